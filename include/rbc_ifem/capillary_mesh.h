@@ -1,0 +1,77 @@
+#ifndef rbc_ifem_capillary_mesh_h
+#define rbc_ifem_capillary_mesh_h
+
+#include <rbc_ifem/parameters.h>
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/types.h>
+#include <deal.II/grid/tria.h>
+
+#include <vector>
+
+/**
+ * The two volume meshes of the capillary segment, both along the x axis from
+ * x = 0 to x = Capillary length, hexahedral, with exact cylindrical
+ * manifolds on every circle so refinement stays on the true geometry:
+ *
+ * - the fluid mesh: the lumen, r < Capillary radius;
+ * - the diffusion mesh: lumen, vessel wall and gas layer as conforming
+ *   concentric regions, told apart by material id.
+ *
+ * The ids below are part of the program's interface: the solvers use them
+ * for boundary conditions and coefficients, users see them in ParaView.
+ */
+namespace rbc_ifem
+{
+  using namespace dealii;
+
+  namespace FluidBoundary
+  {
+    constexpr types::boundary_id wall   = 0; ///< r = Capillary radius
+    constexpr types::boundary_id inlet  = 1; ///< x = 0
+    constexpr types::boundary_id outlet = 2; ///< x = Capillary length
+  } // namespace FluidBoundary
+
+  namespace DiffusionBoundary
+  {
+    constexpr types::boundary_id alveolar_surface = 0; ///< outer gas surface
+    constexpr types::boundary_id inlet_end        = 1; ///< x = 0
+    constexpr types::boundary_id outlet_end       = 2; ///< x = length
+  } // namespace DiffusionBoundary
+
+  namespace Material
+  {
+    constexpr types::material_id plasma      = 0; ///< the lumen
+    constexpr types::material_id vessel_wall = 1;
+    constexpr types::material_id gas         = 2;
+  } // namespace Material
+
+  /**
+   * The lumen mesh for the fluid, globally refined as the parameters say
+   * (band refinement around cells is separate: refine_near_points()).
+   */
+  void
+  create_fluid_mesh(Triangulation<3> &triangulation,
+                    const GeometryParameters &geometry,
+                    const unsigned int        n_global_refinements);
+
+  /// The lumen + wall + gas mesh for CO diffusion, globally refined.
+  void
+  create_diffusion_mesh(Triangulation<3> &        triangulation,
+                        const GeometryParameters &geometry,
+                        const unsigned int        n_global_refinements);
+
+  /**
+   * Refine, @p n_steps times, every active cell that comes closer than
+   * @p band_width to one of @p points (e.g. points on the membranes). The
+   * distance is taken from the cell centre, less half the cell diameter.
+   * Deterministic, so every rank of a shared triangulation does the same.
+   */
+  void
+  refine_near_points(Triangulation<3> &           triangulation,
+                     const std::vector<Point<3>> &points,
+                     const double                 band_width,
+                     const unsigned int           n_steps);
+} // namespace rbc_ifem
+
+#endif

@@ -1,0 +1,58 @@
+#ifndef rbc_ifem_output_h
+#define rbc_ifem_output_h
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/grid/tria.h>
+
+#include <functional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+/**
+ * Writers for the files every experiment produces. Each file appears under
+ * its final name only once it is complete (written to a temporary name,
+ * then renamed), so a crashed run never leaves a file that looks whole.
+ */
+namespace rbc_ifem
+{
+  using namespace dealii;
+
+  /// Write @p path through @p writer, via a temporary file and a rename.
+  void
+  write_file_atomically(const std::string &                        path,
+                        const std::function<void(std::ostream &)> &writer);
+
+  /**
+   * A volume mesh for ParaView: each rank writes the cells it owns, with
+   * their material id and owning rank, as NAME_0000.RANK.vtu, rank 0 the
+   * NAME_0000.pvtu that joins them and NAME.pvd. The boundary faces go to
+   * NAME_boundary.vtu / .pvd with their boundary id.
+   */
+  void
+  write_volume_mesh(const Triangulation<3> &triangulation,
+                    const std::string &     directory,
+                    const std::string &     name,
+                    const MPI_Comm          communicator);
+
+  /**
+   * All membrane surfaces in one NAME.vtu (and NAME.pvd), curved with
+   * @p mapping, with the cell index as cell data. Written by rank 0.
+   */
+  void
+  write_membranes(const std::vector<const Triangulation<2, 3> *> &surfaces,
+                  const MappingQ<2, 3> &                            mapping,
+                  const std::string &                              directory,
+                  const std::string &                              name,
+                  const MPI_Comm                                   communicator);
+
+  /// timing.csv (section,calls,wall_seconds) from a TimerOutput, rank 0.
+  void
+  write_timing(const TimerOutput &timer,
+               const std::string &directory,
+               const MPI_Comm     communicator);
+} // namespace rbc_ifem
+
+#endif

@@ -1,0 +1,111 @@
+#ifndef rbc_ifem_parameters_h
+#define rbc_ifem_parameters_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/tensor.h>
+
+#include <string>
+
+/**
+ * Everything rbc-ifem reads from a .prm file. Units (design.md, Section 3):
+ * length µm, time s, force pN. The names of the parameters listed in
+ * design.md, Section 6 are part of the public interface and never change.
+ */
+namespace rbc_ifem
+{
+  using namespace dealii;
+
+  /// The capillary segment and the tissue around it (subsection "Geometry").
+  struct GeometryParameters
+  {
+    double capillary_radius    = 5.0;  ///< lumen radius [µm]
+    double capillary_length    = 20.0; ///< segment length along x [µm]
+    double wall_thickness      = 1.0;  ///< vessel wall [µm]
+    double gas_layer_thickness = 5.0;  ///< alveolar gas layer [µm]
+
+    static void
+    declare(ParameterHandler &prm);
+    void
+    parse(ParameterHandler &prm);
+    /// Throws InputError unless every length is positive.
+    void
+    validate() const;
+  };
+
+  /// Refinement of the two volume meshes (subsection "Mesh").
+  struct MeshParameters
+  {
+    unsigned int fluid_global_refinements     = 1;
+    unsigned int fluid_band_refinements       = 1;
+    unsigned int diffusion_global_refinements = 1;
+    unsigned int diffusion_band_refinements   = 1;
+    double       band_width                   = 0.5; ///< [µm]
+
+    static void
+    declare(ParameterHandler &prm);
+    void
+    parse(ParameterHandler &prm);
+  };
+
+  /// The red cells' reference shape and its surface mesh (subsection "Cells").
+  struct CellParameters
+  {
+    double         diameter            = 7.5; ///< Evans-Fung diameter 2R [µm]
+    unsigned int   surface_refinements = 3;
+    Tensor<1, 3>   axis{{1., 0., 0.}}; ///< symmetry axis, unit length
+
+    static void
+    declare(ParameterHandler &prm);
+    void
+    parse(ParameterHandler &prm);
+    /// Throws InputError unless the cell fits into the capillary's diameter.
+    void
+    validate(const GeometryParameters &geometry) const;
+  };
+
+  /// Where the cells sit in the segment (subsection "Layout").
+  struct LayoutParameters
+  {
+    std::string  kind             = "uniform"; ///< uniform | random | clustered
+    unsigned int n_cells          = 4;
+    unsigned int seed             = 1;
+    double       minimum_gap      = 0.2; ///< [µm]
+    double       cluster_position = 0.5; ///< centre of a cluster / length
+
+    static void
+    declare(ParameterHandler &prm);
+    void
+    parse(ParameterHandler &prm);
+  };
+
+  /// All parameters of one run.
+  struct Parameters
+  {
+    std::string        experiment       = "geometry";
+    std::string        output_directory = "output/run";
+    GeometryParameters geometry;
+    MeshParameters     mesh;
+    CellParameters     cells;
+    LayoutParameters   layout;
+
+    /// Declare every parameter, with its pattern and documentation.
+    static void
+    declare(ParameterHandler &prm);
+    void
+    parse(ParameterHandler &prm);
+  };
+
+  /**
+   * Read @p filename into @p prm and @p parameters, and check what can be
+   * checked without building anything. Throws InputError, naming the file,
+   * the parameter and the value, if the file cannot be read, holds an
+   * unknown entry or a value outside its pattern, or asks for something
+   * physically impossible.
+   */
+  void
+  read_parameters(const std::string &filename,
+                  ParameterHandler & prm,
+                  Parameters &       parameters);
+} // namespace rbc_ifem
+
+#endif

@@ -1,0 +1,111 @@
+/**
+ * rbc-ifem: red blood cells in a pulmonary capillary, simulated with the
+ * immersed finite element method, and their carbon monoxide uptake.
+ *
+ *   rbc-ifem FILE.prm               run the experiment FILE describes
+ *   rbc-ifem --print-parameters     every parameter with its documentation
+ *   rbc-ifem --help                 usage
+ */
+
+#include <rbc_ifem/geometry_experiment.h>
+#include <rbc_ifem/input_error.h>
+#include <rbc_ifem/parameters.h>
+
+#include <deal.II/base/mpi.h>
+
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace
+{
+  using namespace rbc_ifem;
+
+  void
+  print_usage(std::ostream &out)
+  {
+    out << "Usage: rbc-ifem FILE.prm            run the experiment in FILE.prm\n"
+           "       mpirun -np N rbc-ifem FILE.prm  the same on N MPI ranks\n"
+           "       rbc-ifem --print-parameters  print every parameter, "
+           "documented, as a valid .prm\n"
+           "       rbc-ifem --help              this text\n"
+           "Ready experiments are in prm/; the documentation is in doc/.\n";
+  }
+
+  void
+  print_parameters(std::ostream &out)
+  {
+    ParameterHandler prm;
+    Parameters::declare(prm);
+    prm.print_parameters(out, ParameterHandler::PRM);
+  }
+
+  void
+  run(const std::string &filename, const MPI_Comm communicator)
+  {
+    ParameterHandler prm;
+    Parameters       parameters;
+    read_parameters(filename, prm, parameters);
+    // Patterns::Selection admits only the experiments that exist, so this
+    // is the only one today.
+    GeometryExperiment experiment(parameters, communicator);
+    experiment.run(prm);
+  }
+} // namespace
+
+int
+main(int argc, char *argv[])
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const MPI_Comm communicator = MPI_COMM_WORLD;
+  const bool     root = Utilities::MPI::this_mpi_process(communicator) == 0;
+
+  const std::vector<std::string> arguments(argv + 1, argv + argc);
+  if (arguments.size() == 1 && (arguments[0] == "--help" || arguments[0] == "-h"))
+    {
+      if (root)
+        print_usage(std::cout);
+      return 0;
+    }
+  if (arguments.size() == 1 && arguments[0] == "--print-parameters")
+    {
+      if (root)
+        print_parameters(std::cout);
+      return 0;
+    }
+  if (arguments.size() != 1 || arguments[0].rfind("-", 0) == 0)
+    {
+      if (root)
+        {
+          if (arguments.empty())
+            {
+              std::cerr << "rbc-ifem: no parameter file given; these are the "
+                           "parameters and their defaults:\n\n";
+              print_parameters(std::cerr);
+              std::cerr << '\n';
+            }
+          else
+            std::cerr << "rbc-ifem: cannot understand the arguments given.\n";
+          print_usage(std::cerr);
+        }
+      return 1;
+    }
+
+  try
+    {
+      run(arguments[0], communicator);
+    }
+  catch (const InputError &e)
+    {
+      if (root)
+        std::cerr << "rbc-ifem: error: " << e.what() << std::endl;
+      return 1;
+    }
+  catch (const std::exception &e)
+    {
+      if (root)
+        std::cerr << "rbc-ifem: internal error: " << e.what() << std::endl;
+      return 2;
+    }
+  return 0;
+}

@@ -1,0 +1,157 @@
+#include <rbc_ifem/output.h>
+
+#include <deal.II/base/data_out_base.h>
+#include <deal.II/numerics/data_out.h>
+
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+namespace rbc_ifem
+{
+  void
+  write_file_atomically(const std::string &                        path,
+                        const std::function<void(std::ostream &)> &writer)
+  {
+    const std::string temporary = path + ".part";
+    {
+      std::ofstream out(temporary);
+      writer(out);
+      out.flush();
+      if (!out)
+        throw std::runtime_error("could not write the file '" + path + "'");
+    }
+    std::filesystem::rename(temporary, path);
+  }
+
+  namespace
+  {
+    void
+    write_pvd(const std::string &directory,
+              const std::string &name,
+              const std::string &data_file)
+    {
+      write_file_atomically(directory + "/" + name + ".pvd", [&](std::ostream &out) {
+        DataOutBase::write_pvd_record(out, {{0., data_file}});
+      });
+    }
+
+    /// The boundary faces this rank owns, one patch each, with their id.
+    std::vector<DataOutBase::Patch<2, 3>>
+    boundary_patches(const Triangulation<3> &triangulation)
+    {
+      std::vector<DataOutBase::Patch<2, 3>> patches;
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const auto &face : cell->face_iterators())
+            if (face->at_boundary())
+              {
+                DataOutBase::Patch<2, 3> patch;
+                for (const unsigned int v : face->vertex_indices())
+                  patch.vertices[v] = face->vertex(v);
+                patch.data.reinit(1, face->n_vertices());
+                for (unsigned int v = 0; v < face->n_vertices(); ++v)
+                  patch.data(0, v) = face->boundary_id();
+                patch.patch_index = patches.size();
+                patches.push_back(patch);
+              }
+      return patches;
+    }
+  } // namespace
+
+  void
+  write_volume_mesh(const Triangulation<3> &triangulation,
+                    const std::string &     directory,
+                    const std::string &     name,
+                    const MPI_Comm          communicator)
+  {
+    Vector<float> material_id(triangulation.n_active_cells());
+    Vector<float> owner(triangulation.n_active_cells());
+    for (const auto &cell : triangulation.active_cell_iterators())
+      {
+        material_id[cell->active_cell_index()] = cell->material_id();
+        owner[cell->active_cell_index()]       = cell->subdomain_id();
+      }
+    DataOut<3> data_out;
+    data_out.attach_triangulation(triangulation);
+    data_out.add_data_vector(material_id, "material_id", DataOut<3>::type_cell_data);
+    data_out.add_data_vector(owner, "rank", DataOut<3>::type_cell_data);
+    data_out.build_patches();
+    const std::string pvtu =
+      data_out.write_vtu_with_pvtu_record(directory + "/", name, 0, communicator, 4);
+
+    // The boundary: one piece per rank, joined by a pvtu record on rank 0.
+    const unsigned int rank = Utilities::MPI::this_mpi_process(communicator);
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
+    const auto piece = [&](const unsigned int r) {
+      return name + "_boundary." + Utilities::int_to_string(r, 4) + ".vtu";
+    };
+    const auto patches = boundary_patches(triangulation);
+    write_file_atomically(directory + "/" + piece(rank), [&](std::ostream &out) {
+      DataOutBase::write_vtu(patches, {"boundary_id"}, {}, DataOutBase::VtkFlags(), out);
+    });
+
+    if (rank == 0)
+      {
+        std::vector<std::string> pieces;
+        for (unsigned int r = 0; r < n_ranks; ++r)
+          pieces.push_back(piece(r));
+        write_file_atomically(directory + "/" + name + "_boundary.pvtu",
+                              [&](std::ostream &out) {
+                                DataOutBase::write_pvtu_record(
+                                  out, pieces, {"boundary_id"}, {}, DataOutBase::VtkFlags());
+                              });
+        write_pvd(directory, name, pvtu);
+        write_pvd(directory, name + "_boundary", name + "_boundary.pvtu");
+      }
+  }
+
+  void
+  write_membranes(const std::vector<const Triangulation<2, 3> *> &surfaces,
+                  const MappingQ<2, 3> &                            mapping,
+                  const std::string &                              directory,
+                  const std::string &                              name,
+                  const MPI_Comm                                   communicator)
+  {
+    if (Utilities::MPI::this_mpi_process(communicator) != 0)
+      return;
+
+    std::vector<DataOutBase::Patch<2, 3>> patches;
+    for (unsigned int i = 0; i < surfaces.size(); ++i)
+      {
+        Vector<float> cell_index(surfaces[i]->n_active_cells());
+        cell_index = i;
+        DataOut<2, 3> data_out;
+        data_out.attach_triangulation(*surfaces[i]);
+        data_out.add_data_vector(cell_index, "cell", DataOut<2, 3>::type_cell_data);
+        data_out.build_patches(mapping,
+                               mapping.get_degree(),
+                               DataOut<2, 3>::curved_inner_cells);
+        for (auto patch : data_out.get_patches())
+          {
+            patch.patch_index = patches.size();
+            patches.push_back(patch);
+          }
+      }
+    write_file_atomically(directory + "/" + name + ".vtu", [&](std::ostream &out) {
+      DataOutBase::write_vtu(patches, {"cell"}, {}, DataOutBase::VtkFlags(), out);
+    });
+    write_pvd(directory, name, name + ".vtu");
+  }
+
+  void
+  write_timing(const TimerOutput &timer,
+               const std::string &directory,
+               const MPI_Comm     communicator)
+  {
+    if (Utilities::MPI::this_mpi_process(communicator) != 0)
+      return;
+    const auto wall  = timer.get_summary_data(TimerOutput::total_wall_time);
+    const auto calls = timer.get_summary_data(TimerOutput::n_calls);
+    write_file_atomically(directory + "/timing.csv", [&](std::ostream &out) {
+      out << "section,calls,wall_seconds\n";
+      for (const auto &[section, seconds] : wall)
+        out << '"' << section << "\"," << calls.at(section) << ',' << seconds << '\n';
+    });
+  }
+} // namespace rbc_ifem

@@ -32,17 +32,10 @@ namespace rbc_ifem
     const Tensor<1, 3>   e_x{{1., 0., 0.}};
 
     // The shape is centrally symmetric, so its extent along +x and -x agree.
+    // It also lies inside the ball of radius R about its centre, so a cell on
+    // the axis clears the wall in any orientation once its diameter is
+    // smaller than the capillary's (CellParameters::validate()).
     length_of_cell = 2. * shape.extent(reference, e_x);
-
-    const double reach = shape.distance_from_line(reference, Point<3>(), e_x);
-    if (reach >= geometry.capillary_radius)
-      throw InputError("Cells/Axis",
-                       format(axis[0]) + ", " + format(axis[1]) + ", " +
-                         format(axis[2]),
-                       "a cell with this axis reaches " + format(reach) +
-                         " µm from the capillary axis, beyond Geometry/"
-                         "Capillary radius = " +
-                         format(geometry.capillary_radius) + " µm.");
 
     if (layout.n_cells > max_cells())
       {

@@ -128,19 +128,6 @@ namespace rbc_ifem
     });
   }
 
-  double
-  EvansFungShape::distance_from_line(const CellPlacement &placement,
-                                     const Point<3> &     point_on_line,
-                                     const Tensor<1, 3> & line_direction) const
-  {
-    const Tensor<1, 3> e = line_direction / line_direction.norm();
-    return maximize_over_surface(placement, [&](const Point<3> &x) {
-      const Tensor<1, 3> d = x - point_on_line;
-      return (d - (d * e) * e).norm();
-    });
-  }
-
-
   EvansFungManifold::EvansFungManifold(const EvansFungShape &shape,
                                        const CellPlacement & placement)
     : shape(shape)

@@ -1,6 +1,7 @@
 #include <rbc_ifem/output.h>
 
 #include <deal.II/base/data_out_base.h>
+#include <deal.II/fe/mapping_q.h>
 #include <deal.II/numerics/data_out.h>
 
 #include <filesystem>
@@ -47,6 +48,7 @@ namespace rbc_ifem
             if (face->at_boundary())
               {
                 DataOutBase::Patch<2, 3> patch;
+                patch.reference_cell = face->reference_cell();
                 for (const unsigned int v : face->vertex_indices())
                   patch.vertices[v] = face->vertex(v);
                 patch.data.reinit(1, face->n_vertices());
@@ -76,7 +78,8 @@ namespace rbc_ifem
     data_out.attach_triangulation(triangulation);
     data_out.add_data_vector(material_id, "material_id", DataOut<3>::type_cell_data);
     data_out.add_data_vector(owner, "rank", DataOut<3>::type_cell_data);
-    data_out.build_patches();
+    // Curved cells, so the circles look like circles in ParaView.
+    data_out.build_patches(MappingQ<3>(2), 2, DataOut<3>::curved_inner_cells);
     const std::string pvtu =
       data_out.write_vtu_with_pvtu_record(directory + "/", name, 0, communicator, 4);
 

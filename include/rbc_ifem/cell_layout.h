@@ -26,8 +26,8 @@ namespace rbc_ifem
   public:
     /**
      * Build the layout, or throw InputError naming the parameter if it is
-     * impossible: more cells than fit, a cluster placed partly outside the
-     * segment, or a tilted cell that reaches the wall.
+     * impossible: more cells than fit, or a cluster placed partly outside
+     * the segment.
      */
     CellLayout(const LayoutParameters &  layout,
                const GeometryParameters &geometry,

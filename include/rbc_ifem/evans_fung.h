@@ -64,15 +64,6 @@ namespace rbc_ifem
     double
     extent(const CellPlacement &placement, const Tensor<1, 3> &direction) const;
 
-    /**
-     * The largest distance of a cell's surface from the line through
-     * @p point_on_line along the unit vector @p line_direction.
-     */
-    double
-    distance_from_line(const CellPlacement &placement,
-                       const Point<3> &     point_on_line,
-                       const Tensor<1, 3> & line_direction) const;
-
   private:
     /// g(t) of the class documentation, and its derivative.
     double

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Install the Debian 12 packages rbc-ifem needs: deal.II 9.4 (with MPI,
+# Trilinos, PETSc, METIS, ...), a compiler, CMake, MPI launchers and numdiff
+# for the tests. With --docs also what renders the documentation's figures
+# (python3-vtk9 and a virtual X server). Uses sudo when not run as root.
+set -euo pipefail
+
+packages=(libdeal.ii-dev g++ cmake make openmpi-bin numdiff)
+if [ "${1:-}" = "--docs" ]; then
+  packages+=(python3-vtk9 xvfb xauth)
+fi
+
+if dpkg-query -W -f='${Status}\n' "${packages[@]}" 2>/dev/null | grep -qv "install ok installed" ||
+   [ "$(dpkg-query -W -f='${Status}\n' "${packages[@]}" 2>/dev/null | wc -l)" -ne "${#packages[@]}" ]; then
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo=sudo
+  $sudo apt-get update
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y --no-install-recommends "${packages[@]}"
+else
+  echo "install-packages: ${packages[*]} already installed"
+fi

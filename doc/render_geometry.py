@@ -97,10 +97,10 @@ def main(directory, picture):
 
     camera = renderer.GetActiveCamera()
     camera.SetFocalPoint(10, 0, 0)
-    camera.SetPosition(-6, -34, 16)
+    camera.SetPosition(-14, -30, 13)
     camera.SetViewUp(0, 0, 1)
     renderer.ResetCamera()
-    camera.Zoom(1.35)
+    camera.Zoom(1.5)
 
     window = vtk.vtkRenderWindow()
     window.AddRenderer(renderer)

@@ -26,6 +26,17 @@ namespace
    * sqrt(R⁴ t² + r² z'²) is smooth, and V = ∫ π r² z' dt (signed, so the
    * dimples count correctly).
    */
+  /// An observed order for the table, "-" where there is none yet.
+  std::string
+  order_text(const double order)
+  {
+    if (std::isnan(order))
+      return "-";
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(2) << order;
+    return s.str();
+  }
+
   Exact
   exact_measures(const double R)
   {
@@ -104,10 +115,8 @@ main()
           volume_error = e_v;
           std::cout << std::setw(13) << refinements << std::setw(7) << surface.n_active_cells()
                     << std::scientific << std::setprecision(3) << std::setw(13) << e_a
-                    << std::fixed << std::setprecision(2) << std::setw(8) << area_order
-                    << std::scientific << std::setprecision(3) << std::setw(15) << e_v
-                    << std::fixed << std::setprecision(2) << std::setw(8) << volume_order
-                    << '\n';
+                    << std::setw(8) << order_text(area_order) << std::setw(15) << e_v
+                    << std::setw(8) << order_text(volume_order) << '\n';
           if (refinements == 5)
             check.near("centroid distance from the placed centre [µm]",
                        m.centroid.distance(placement.center), 0., 1e-6);

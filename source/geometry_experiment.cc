@@ -3,7 +3,6 @@
 #include <rbc_ifem/input_error.h>
 #include <rbc_ifem/output.h>
 
-#include <filesystem>
 #include <iomanip>
 #include <sstream>
 
@@ -42,6 +41,12 @@ namespace rbc_ifem
     create_meshes();
     write_output(prm);
     write_timing(timer, parameters.output_directory, communicator);
+
+    Utilities::System::MemoryStats memory;
+    Utilities::System::get_memory_stats(memory);
+    pcout << "  peak memory: "
+          << Utilities::MPI::max(memory.VmHWM, communicator) / 1024.
+          << " MB (largest over ranks)" << std::endl;
   }
 
   void
@@ -120,9 +125,7 @@ namespace rbc_ifem
   {
     TimerOutput::Scope scope(timer, "output");
     const std::string &directory = parameters.output_directory;
-    if (Utilities::MPI::this_mpi_process(communicator) == 0)
-      std::filesystem::create_directories(directory);
-    MPI_Barrier(communicator);
+    create_output_directory(directory, communicator);
 
     write_volume_mesh(fluid_mesh, directory, "fluid_mesh", communicator);
     write_volume_mesh(diffusion_mesh, directory, "diffusion_mesh", communicator);

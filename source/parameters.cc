@@ -260,8 +260,12 @@ namespace rbc_ifem
   {
     experiment       = prm.get("Experiment");
     output_directory = prm.get("Output directory");
-    if (output_directory.empty())
-      throw InputError("Output directory", "", "it must name a directory.");
+    if (output_directory.empty() ||
+        (std::filesystem::exists(output_directory) &&
+         !std::filesystem::is_directory(output_directory)))
+      throw InputError("Output directory",
+                       output_directory,
+                       "it must name a directory, new or existing, not a file.");
     geometry.parse(prm);
     mesh.parse(prm);
     cells.parse(prm);

@@ -12,6 +12,7 @@ shift 2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work" || exit 1
+touch clash  # a file where a test asks for an output directory
 if [ "$prm" = MISSING ]; then
   input=does-not-exist.prm
 else
@@ -36,7 +37,7 @@ for text in "$@"; do
     failed=1
   fi
 done
-written=$(ls -A | grep -v -x -e input.prm -e stdout.txt -e stderr.txt)
+written=$(ls -A | grep -v -x -e input.prm -e stdout.txt -e stderr.txt -e clash)
 if [ -n "$written" ]; then
   echo "FAILED: output was written: $written"
   failed=1

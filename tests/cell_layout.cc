@@ -35,6 +35,17 @@ namespace
     return measure_clearance(pointers, MappingQ<2, 3>(2), geometry.capillary_radius);
   }
 
+  /// The largest |x_i - expected(i)| over the cells' centres.
+  template <typename Expected>
+  double
+  largest_deviation(const CellLayout &layout, const Expected &expected)
+  {
+    double worst = 0.;
+    for (unsigned int i = 0; i < layout.placements().size(); ++i)
+      worst = std::max(worst, std::abs(layout.placements()[i].center[0] - expected(i)));
+    return worst;
+  }
+
   /// The largest half thickness of the profile, by dense sampling.
   double
   sampled_half_length(const double R)
@@ -103,10 +114,9 @@ main()
   layout.n_cells = 6;
   {
     const CellLayout uniform(layout, geometry, cells);
-    double           worst = 0.;
-    for (unsigned int i = 0; i < 6; ++i)
-      worst = std::max(worst,
-                       std::abs(uniform.placements()[i].center[0] - (i + 0.5) * 20. / 6.));
+    const double     worst = largest_deviation(uniform, [](const unsigned int i) {
+      return (i + 0.5) * 20. / 6.;
+    });
     check.at_most("uniform: largest deviation from (i+1/2) L/N [µm]", worst, 1e-12);
   }
 
@@ -117,13 +127,11 @@ main()
   layout.n_cells = 5;
   {
     const CellLayout clustered(layout, geometry, cells);
-    double           worst = 0.;
-    for (unsigned int i = 1; i < 5; ++i)
-      worst = std::max(worst,
-                       std::abs(clustered.placements()[i].center[0] -
-                                clustered.placements()[i - 1].center[0] -
-                                (clustered.cell_length() + gap)));
-    check.at_most("clustered: centre spacing - (length + gap) [µm]", worst, 1e-12);
+    const double     first = clustered.placements()[0].center[0];
+    const double     worst = largest_deviation(clustered, [&](const unsigned int i) {
+      return first + i * (clustered.cell_length() + gap);
+    });
+    check.at_most("clustered: centres - (first + i (length + gap)) [µm]", worst, 1e-12);
     const double middle = 0.5 * (clustered.placements()[0].center[0] +
                                  clustered.placements()[4].center[0]);
     check.near("clustered: group centre [µm]", middle, 10., 1e-12);

@@ -4,7 +4,8 @@
 # Runs an experiment (on N MPI ranks if MPIEXEC is given) in an empty
 # directory and compares its log and the CSV files stored in EXPECTED_DIR
 # with numdiff (relative tolerance 1e-8, absolute 1e-10 for values near 0).
-# The log line naming the number of ranks is left out of the comparison.
+# The log lines naming the number of ranks and the memory used are left
+# out of the comparison.
 set -u
 exe=$1
 prm=$2
@@ -23,7 +24,7 @@ cd "$work" || exit 1
 status=$?
 cat log.txt
 [ $status -eq 0 ] || { echo "FAILED: exit status $status"; exit 1; }
-grep -v "rank(s)" log.txt >run.log
+grep -v -e "rank(s)" -e "peak memory" log.txt >run.log
 
 directory=$(sed -n 's/^set Output directory *= *//p' "$prm")
 failed=0

@@ -20,6 +20,13 @@ namespace rbc_ifem
 {
   using namespace dealii;
 
+  /**
+   * Create the run's output directory (rank 0), or throw InputError on
+   * every rank, naming `Output directory`, if that is impossible.
+   */
+  void
+  create_output_directory(const std::string &directory, const MPI_Comm communicator);
+
   /// Write @p path through @p writer, via a temporary file and a rename.
   void
   write_file_atomically(const std::string &                        path,

@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Usage: benchmarks/geometry.sh [RBC_IFEM] [RANKS]
+#
+# Times the geometry experiment (seven uniform cells, the paper's full
+# capillary) at increasing mesh sizes: fluid and diffusion mesh cells, the
+# wall seconds of each TimerOutput section, and the peak memory. Prints a
+# Markdown table. RBC_IFEM defaults to build/rbc-ifem, RANKS to 1.
+set -euo pipefail
+here=$(cd "$(dirname "$0")/.." && pwd)
+exe=${1:-$here/build/rbc-ifem}
+ranks=${2:-1}
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+
+echo "| global refinements | surface refinements | fluid cells | diffusion cells | membranes [s] | clearance [s] | fluid mesh [s] | diffusion mesh [s] | output [s] | peak memory [MB] |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
+for level in 1 2 3; do
+  surface=$((level + 2))
+  cat > run.prm <<PRM
+set Output directory = out
+subsection Mesh
+  set Fluid global refinements     = $level
+  set Diffusion global refinements = $level
+end
+subsection Cells
+  set Surface refinements = $surface
+end
+subsection Layout
+  set Number of cells = 7
+end
+PRM
+  mpirun -np "$ranks" "$exe" run.prm > log.txt
+  cells=$(sed -n 's/.*fluid mesh: \([0-9]*\) cells, diffusion mesh: \([0-9]*\) cells.*/\1 | \2/p' log.txt)
+  memory=$(sed -n 's/.*peak memory: \([0-9.]*\) MB.*/\1/p' log.txt)
+  seconds() { awk -F, -v s="\"$1\"" '$1 == s {printf "%.2f", $3}' out/timing.csv; }
+  echo "| $level | $surface | $cells | $(seconds membranes) | $(seconds "clearance check") | $(seconds "fluid mesh") | $(seconds "diffusion mesh") | $(seconds output) | ${memory%.*} |"
+done

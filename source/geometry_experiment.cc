@@ -79,8 +79,11 @@ namespace rbc_ifem
                                                   membrane_mapping,
                                                   parameters.geometry.capillary_radius);
     pcout << "  clearance: nearest membranes " << clearance.min_cell_gap
-          << " µm apart, nearest wall " << clearance.min_wall_gap << " µm away"
-          << std::endl;
+          << " µm apart";
+    if (membranes.size() > 1)
+      pcout << " (cells " << clearance.closest_cells.first << " and "
+            << clearance.closest_cells.second << ')';
+    pcout << ", nearest wall " << clearance.min_wall_gap << " µm away" << std::endl;
 
     // The layout keeps the true surfaces apart; meshes too coarse to follow
     // them can still cross, which no solver would survive.

@@ -7,6 +7,8 @@
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/grid/tria.h>
 
+#include <limits>
+#include <utility>
 #include <vector>
 
 namespace rbc_ifem
@@ -47,7 +49,7 @@ namespace rbc_ifem
   {
     double min_cell_gap  = std::numeric_limits<double>::infinity(); ///< [µm]
     double min_wall_gap  = std::numeric_limits<double>::infinity(); ///< [µm]
-    std::pair<unsigned int, unsigned int> closest_cells{0, 0};
+    std::pair<unsigned int, unsigned int> closest_cells{0, 0}; ///< indices
   };
 
   /**

@@ -7,9 +7,11 @@
  *   rbc-ifem --help                 usage
  */
 
+#include <rbc_ifem/flow_experiment.h>
 #include <rbc_ifem/geometry_experiment.h>
 #include <rbc_ifem/input_error.h>
 #include <rbc_ifem/parameters.h>
+#include <rbc_ifem/solver_failure.h>
 
 #include <deal.II/base/mpi.h>
 
@@ -46,10 +48,11 @@ namespace
     ParameterHandler prm;
     Parameters       parameters;
     read_parameters(filename, prm, parameters);
-    // Patterns::Selection admits only the experiments that exist, so this
-    // is the only one today.
-    GeometryExperiment experiment(parameters, communicator);
-    experiment.run(prm);
+    // Patterns::Selection admits only the experiments that exist.
+    if (parameters.experiment == "flow")
+      FlowExperiment(parameters, communicator).run(prm);
+    else
+      GeometryExperiment(parameters, communicator).run(prm);
   }
 } // namespace
 
@@ -100,6 +103,12 @@ main(int argc, char *argv[])
       if (root)
         std::cerr << "rbc-ifem: error: " << e.what() << std::endl;
       return 1;
+    }
+  catch (const SolverFailure &e)
+    {
+      if (root)
+        std::cerr << "rbc-ifem: stopped: " << e.what() << std::endl;
+      return 2;
     }
   catch (const std::exception &e)
     {

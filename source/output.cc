@@ -11,6 +11,26 @@
 
 namespace rbc_ifem
 {
+  DataOutBase::VtkFlags
+  fast_vtk_flags()
+  {
+    DataOutBase::VtkFlags flags;
+    flags.compression_level = DataOutBase::VtkFlags::best_speed;
+    return flags;
+  }
+
+  void
+  write_pvd(const std::string &                               directory,
+            const std::string &                               name,
+            const std::vector<std::pair<double, std::string>> &records,
+            const MPI_Comm                                    communicator)
+  {
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      write_file_atomically(directory + "/" + name + ".pvd", [&](std::ostream &out) {
+        DataOutBase::write_pvd_record(out, records);
+      });
+  }
+
   void
   create_output_directory(const std::string &directory, const MPI_Comm communicator)
   {
@@ -44,29 +64,6 @@ namespace rbc_ifem
 
   namespace
   {
-    /**
-     * VTU flags for every file we write: deal.II's default, the best zlib
-     * compression, spends two thirds of a large run's output time in zlib;
-     * the fastest level costs little in size.
-     */
-    DataOutBase::VtkFlags
-    vtk_flags()
-    {
-      DataOutBase::VtkFlags flags;
-      flags.compression_level = DataOutBase::VtkFlags::best_speed;
-      return flags;
-    }
-
-    void
-    write_pvd(const std::string &directory,
-              const std::string &name,
-              const std::string &data_file)
-    {
-      write_file_atomically(directory + "/" + name + ".pvd", [&](std::ostream &out) {
-        DataOutBase::write_pvd_record(out, {{0., data_file}});
-      });
-    }
-
     /// The boundary faces this rank owns, one patch each, with their id.
     std::vector<DataOutBase::Patch<2, 3>>
     boundary_patches(const Triangulation<3> &triangulation)
@@ -106,7 +103,7 @@ namespace rbc_ifem
       }
     DataOut<3> data_out;
     data_out.attach_triangulation(triangulation);
-    data_out.set_flags(vtk_flags());
+    data_out.set_flags(fast_vtk_flags());
     data_out.add_data_vector(material_id, "material_id", DataOut<3>::type_cell_data);
     data_out.add_data_vector(owner, "rank", DataOut<3>::type_cell_data);
     // Curved cells, so the circles look like circles in ParaView.
@@ -122,7 +119,7 @@ namespace rbc_ifem
     };
     const auto patches = boundary_patches(triangulation);
     write_file_atomically(directory + "/" + piece(rank), [&](std::ostream &out) {
-      DataOutBase::write_vtu(patches, {"boundary_id"}, {}, vtk_flags(), out);
+      DataOutBase::write_vtu(patches, {"boundary_id"}, {}, fast_vtk_flags(), out);
     });
 
     if (rank == 0)
@@ -133,10 +130,10 @@ namespace rbc_ifem
         write_file_atomically(directory + "/" + name + "_boundary.pvtu",
                               [&](std::ostream &out) {
                                 DataOutBase::write_pvtu_record(
-                                  out, pieces, {"boundary_id"}, {}, vtk_flags());
+                                  out, pieces, {"boundary_id"}, {}, fast_vtk_flags());
                               });
-        write_pvd(directory, name, pvtu);
-        write_pvd(directory, name + "_boundary", name + "_boundary.pvtu");
+        write_pvd(directory, name, {{0., pvtu}}, communicator);
+        write_pvd(directory, name + "_boundary", {{0., name + "_boundary.pvtu"}}, communicator);
       }
   }
 
@@ -168,9 +165,9 @@ namespace rbc_ifem
           }
       }
     write_file_atomically(directory + "/" + name + ".vtu", [&](std::ostream &out) {
-      DataOutBase::write_vtu(patches, {"cell"}, {}, vtk_flags(), out);
+      DataOutBase::write_vtu(patches, {"cell"}, {}, fast_vtk_flags(), out);
     });
-    write_pvd(directory, name, name + ".vtu");
+    write_pvd(directory, name, {{0., name + ".vtu"}}, communicator);
   }
 
   void

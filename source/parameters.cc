@@ -238,13 +238,123 @@ namespace rbc_ifem
   }
 
   void
+  FluidParameters::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Fluid");
+    prm.declare_entry("Model",
+                      "Stokes",
+                      Patterns::Selection("Stokes|Navier-Stokes"),
+                      "Stokes: unsteady Stokes, the fast path (the capillary "
+                      "Reynolds number is ~1e-5); Navier-Stokes: with the "
+                      "convective term, Newton-Raphson in every time step.");
+    prm.declare_entry("Viscosity",
+                      "1.2e-3",
+                      Patterns::Double(0.),
+                      "Dynamic viscosity μ of plasma (and of the cytoplasm: "
+                      "viscosity ratio 1) [pN s/µm²]; 1.2e-3 is 1.2 mPa s.");
+    prm.declare_entry("Density",
+                      "1e-9",
+                      Patterns::Double(0.),
+                      "Density ρ [mg/µm³]; 1e-9 is 1000 kg/m³.");
+    prm.declare_entry("Inlet mean speed",
+                      "500",
+                      Patterns::Double(),
+                      "Mean speed ū of the Poiseuille inflow at x = 0, "
+                      "u(r) = 2ū(1 - r²/R²) [µm/s]; capillary red cells move "
+                      "at 300-700 µm/s.");
+    prm.declare_entry("Frame velocity",
+                      "0",
+                      Patterns::Double(),
+                      "Velocity U_frame of the computational frame along x "
+                      "[µm/s]: walls and inflow move at -U_frame in it. 0 is "
+                      "the laboratory frame.");
+    prm.declare_entry("Linear solver tolerance",
+                      "1e-6",
+                      Patterns::Double(0.),
+                      "FGMRES stops when the residual is this fraction of the "
+                      "largest residual of the run (the problem's scale); "
+                      "1e-6 leaves the solution 1e-6 from exact, far below "
+                      "the discretisation error.");
+    prm.declare_entry("Max linear iterations",
+                      "500",
+                      Patterns::Integer(1),
+                      "FGMRES gives up (and the run stops) after this many "
+                      "iterations.");
+    prm.declare_entry("Newton tolerance",
+                      "1e-8",
+                      Patterns::Double(0.),
+                      "Navier-Stokes: Newton stops when the residual has "
+                      "fallen by this factor from its first value in the "
+                      "step.");
+    prm.declare_entry("Max Newton iterations",
+                      "20",
+                      Patterns::Integer(1),
+                      "Navier-Stokes: the run stops if Newton has not "
+                      "converged after this many iterations.");
+    prm.leave_subsection();
+  }
+
+  void
+  FluidParameters::parse(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Fluid");
+    model                 = prm.get("Model");
+    viscosity             = prm.get_double("Viscosity");
+    density               = prm.get_double("Density");
+    inlet_mean_speed      = prm.get_double("Inlet mean speed");
+    frame_velocity        = prm.get_double("Frame velocity");
+    linear_tolerance      = prm.get_double("Linear solver tolerance");
+    max_linear_iterations = prm.get_integer("Max linear iterations");
+    newton_tolerance      = prm.get_double("Newton tolerance");
+    max_newton_iterations = prm.get_integer("Max Newton iterations");
+    prm.leave_subsection();
+    if (!(viscosity > 0.))
+      throw InputError("Fluid/Viscosity", to_string(viscosity), "it must be > 0 pN s/µm².");
+  }
+
+  void
+  TimeParameters::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Time");
+    prm.declare_entry("Time step",
+                      "1e-3",
+                      Patterns::Double(0.),
+                      "Time step Δt of the implicit (backward Euler) "
+                      "integration [s].");
+    prm.declare_entry("Number of steps",
+                      "10",
+                      Patterns::Integer(1),
+                      "How many time steps the run takes.");
+    prm.declare_entry("Output interval",
+                      "1",
+                      Patterns::Integer(1),
+                      "Write the fields (VTU) every this many steps; the CSV "
+                      "tables get every step.");
+    prm.leave_subsection();
+  }
+
+  void
+  TimeParameters::parse(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Time");
+    time_step       = prm.get_double("Time step");
+    n_steps         = prm.get_integer("Number of steps");
+    output_interval = prm.get_integer("Output interval");
+    prm.leave_subsection();
+    if (!(time_step > 0.))
+      throw InputError("Time/Time step", to_string(time_step), "it must be > 0 s.");
+  }
+
+  void
   Parameters::declare(ParameterHandler &prm)
   {
     prm.declare_entry("Experiment",
                       "geometry",
-                      Patterns::Selection("geometry"),
+                      Patterns::Selection("geometry|flow"),
                       "What to run. geometry: build the fluid and diffusion "
-                      "meshes and the cell layout, and write them out.");
+                      "meshes and the cell layout, and write them out. flow: "
+                      "the plasma flow in the capillary without cells, for "
+                      "Time/Number of steps (flow.csv, VTU of v and p).");
     prm.declare_entry("Output directory",
                       "output/run",
                       Patterns::DirectoryName(),
@@ -253,6 +363,8 @@ namespace rbc_ifem
     MeshParameters::declare(prm);
     CellParameters::declare(prm);
     LayoutParameters::declare(prm);
+    FluidParameters::declare(prm);
+    TimeParameters::declare(prm);
   }
 
   void
@@ -270,6 +382,8 @@ namespace rbc_ifem
     mesh.parse(prm);
     cells.parse(prm);
     layout.parse(prm);
+    fluid.parse(prm);
+    time.parse(prm);
     geometry.validate();
     cells.validate(geometry);
   }

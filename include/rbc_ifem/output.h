@@ -1,6 +1,7 @@
 #ifndef rbc_ifem_output_h
 #define rbc_ifem_output_h
 
+#include <deal.II/base/data_out_base.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
 #include <deal.II/fe/mapping_q.h>
@@ -26,6 +27,21 @@ namespace rbc_ifem
    */
   void
   create_output_directory(const std::string &directory, const MPI_Comm communicator);
+
+  /**
+   * VTU flags for every file we write: deal.II's default, the best zlib
+   * compression, spends two thirds of a large run's output time in zlib;
+   * the fastest level costs little in size.
+   */
+  DataOutBase::VtkFlags
+  fast_vtk_flags();
+
+  /// Write NAME.pvd listing (time, file) pairs, rank 0 only.
+  void
+  write_pvd(const std::string &                               directory,
+            const std::string &                               name,
+            const std::vector<std::pair<double, std::string>> &records,
+            const MPI_Comm                                    communicator);
 
   /// Write @p path through @p writer, via a temporary file and a rename.
   void

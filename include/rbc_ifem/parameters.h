@@ -78,6 +78,38 @@ namespace rbc_ifem
     parse(ParameterHandler &prm);
   };
 
+  /// The plasma and how its flow is solved (subsection "Fluid").
+  struct FluidParameters
+  {
+    std::string  model            = "Stokes"; ///< Stokes | Navier-Stokes
+    double       viscosity        = 1.2e-3;   ///< μ [pN s/µm²]
+    double       density          = 1e-9;     ///< ρ [mg/µm³]
+    double       inlet_mean_speed = 500.;     ///< ū [µm/s]
+    double       frame_velocity   = 0.;       ///< U_frame along x [µm/s]
+    double       linear_tolerance = 1e-6;     ///< relative, FGMRES
+    unsigned int max_linear_iterations = 500;
+    double       newton_tolerance      = 1e-8; ///< relative to the first residual
+    unsigned int max_newton_iterations = 20;
+
+    static void
+    declare(ParameterHandler &prm);
+    void
+    parse(ParameterHandler &prm);
+  };
+
+  /// Time stepping (subsection "Time").
+  struct TimeParameters
+  {
+    double       time_step       = 1e-3; ///< Δt [s]
+    unsigned int n_steps         = 10;
+    unsigned int output_interval = 1; ///< VTU every this many steps
+
+    static void
+    declare(ParameterHandler &prm);
+    void
+    parse(ParameterHandler &prm);
+  };
+
   /// All parameters of one run.
   struct Parameters
   {
@@ -87,6 +119,8 @@ namespace rbc_ifem
     MeshParameters     mesh;
     CellParameters     cells;
     LayoutParameters   layout;
+    FluidParameters    fluid;
+    TimeParameters     time;
 
     /// Declare every parameter, with its pattern and documentation.
     static void

@@ -1,0 +1,190 @@
+#ifndef rbc_ifem_fluid_problem_h
+#define rbc_ifem_fluid_problem_h
+
+#include <rbc_ifem/parameters.h>
+
+#include <deal.II/base/function.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/distributed/shared_tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_block_sparse_matrix.h>
+#include <deal.II/lac/trilinos_parallel_block_vector.h>
+#include <deal.II/lac/trilinos_precondition.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace rbc_ifem
+{
+  using namespace dealii;
+
+  /**
+   * Hagen-Poiseuille flow in the capillary, seen from a frame moving with
+   * U_frame along x: v = (2ū(1 - r²/R²) - U_frame, 0, 0), p = 8μū(L - x)/R²
+   * (zero at the outlet). Components: v_x, v_y, v_z, p. It is the inflow
+   * profile of FluidProblem and the exact solution of its tests.
+   */
+  class PoiseuilleFlow : public Function<3>
+  {
+  public:
+    PoiseuilleFlow(const double mean_speed,
+                   const double frame_velocity,
+                   const double viscosity,
+                   const GeometryParameters &geometry);
+
+    double
+    value(const Point<3> &p, const unsigned int component = 0) const override;
+
+  private:
+    const double mean_speed, frame_velocity, viscosity, radius, length;
+  };
+
+  /// Integral quantities of a flow field, as flow.csv reports them.
+  struct FlowMeasures
+  {
+    double flow_rate     = 0.; ///< ∫ v·n over the outlet [µm³/s]
+    double pressure_drop = 0.; ///< mean inlet minus mean outlet pressure [pN/µm²]
+    double max_velocity  = 0.; ///< largest |v| at quadrature points [µm/s]
+    double divergence_l2 = 0.; ///< ‖∇·v‖ in L2 [µm^1.5/s]
+  };
+
+  /// What one time step took.
+  struct StepReport
+  {
+    unsigned int newton_iterations = 0;
+    unsigned int linear_iterations = 0; ///< FGMRES, summed over Newton
+    std::vector<double> residuals;      ///< ‖R‖ before each Newton update and after the last
+  };
+
+  /**
+   * The plasma flow in the capillary lumen (design.md, "Fluid"): velocity v
+   * and pressure p in Taylor-Hood Q2-Q1 on a parallel::shared mesh from
+   * create_fluid_mesh(), with a quadratic mapping for the curved wall.
+   *
+   * Each time step is backward Euler for
+   *
+   *   ρ (v - vⁿ)/Δt [+ ρ (v·∇)v] - μΔv + ∇p = f,   ∇·v = 0,
+   *
+   * with the continuity equation multiplied by μ, so that both rows of the
+   * residual have the same units (pN·µm) and the solver's relative tolerance
+   * weighs them alike (without it, ∇·v rows are ~10³ times larger than the
+   * momentum rows in these units and the pressure converges poorly),
+   * solved by Newton's method on the residual R(v, p): the right-hand side
+   * of every linear solve is the residual, assembled cell by cell, and
+   * updates satisfy homogeneous constraints. In Stokes mode the Jacobian is
+   * the constant Stokes operator: it and its preconditioner are built once
+   * in setup(), and a step is one residual assembly and one FGMRES solve,
+   * which solves the linear problem exactly. Navier-Stokes mode reassembles
+   * the Jacobian (with convection) and its AMG in every Newton iteration.
+   *
+   * Boundary conditions: no slip on the wall, the Poiseuille profile of mean
+   * speed ū at the inlet, both shifted by -U_frame e_x in a frame moving
+   * with U_frame; at the outlet the do-nothing condition μ ∂v/∂n - p n = 0
+   * (the gradient form of the viscous term; with constant μ and ∇·v = 0 it
+   * equals ∇·(2με(v)) inside the domain, and it admits the fully developed
+   * Poiseuille flow with p = 0 at the outlet).
+   *
+   * The membrane forces of the immersed method enter through
+   * set_body_force(): a load vector f_J = Σ_I F_I φ_J(x_I) in this space.
+   */
+  class FluidProblem
+  {
+  public:
+    FluidProblem(const parallel::shared::Triangulation<3> &triangulation,
+                 const FluidParameters &                   parameters,
+                 const GeometryParameters &                geometry,
+                 const double                              time_step,
+                 TimerOutput &                             timer);
+
+    /// Distribute DoFs, build constraints, matrices and (Stokes) the preconditioner.
+    void
+    setup();
+
+    /// Change the frame velocity U_frame [µm/s]; takes effect at the next step.
+    void
+    set_frame_velocity(const double frame_velocity);
+
+    /**
+     * Body-force hook: a load vector with the layout of solution(), velocity
+     * block only, condensed with zero_constraints() (assemble it with
+     * zero_constraints().distribute_local_to_global()). Used from the next
+     * step on, until replaced.
+     */
+    void
+    set_body_force(const TrilinosWrappers::MPI::BlockVector &load);
+
+    /// Advance the solution by one time step Δt. Throws SolverFailure.
+    StepReport
+    advance();
+
+    FlowMeasures
+    measure() const;
+
+    /// VTU (one piece per rank) and PVTU of v and p; returns the PVTU name.
+    std::string
+    write_vtu(const std::string &directory, const unsigned int counter) const;
+
+    const TrilinosWrappers::MPI::BlockVector &
+    solution() const;
+    const DoFHandler<3> &
+    get_dof_handler() const;
+    const MappingQ<3> &
+    get_mapping() const;
+    const AffineConstraints<double> &
+    zero_constraints() const;
+    /// Owned index sets of the velocity and pressure blocks.
+    const std::vector<IndexSet> &
+    owned_partitioning() const;
+
+  private:
+    void
+    setup_dofs();
+    void
+    setup_matrices();
+    /// Hanging nodes + the Dirichlet values of (ū, U_frame), scaled by @p scale.
+    void
+    make_constraints(AffineConstraints<double> &constraints, const double scale) const;
+    void
+    assemble_jacobian(const bool with_convection);
+    void
+    build_preconditioner();
+    double
+    assemble_residual(const bool with_convection);
+    unsigned int
+    solve_linear_system();
+
+    const FluidParameters    parameters;
+    const GeometryParameters geometry;
+    const double             time_step;
+    const MPI_Comm           communicator;
+    TimerOutput &            timer;
+
+    const parallel::shared::Triangulation<3> &triangulation;
+    const MappingQ<3>                         mapping;
+    const FESystem<3>                         fe;
+    DoFHandler<3>                             dof_handler;
+
+    std::vector<IndexSet>     owned;
+    std::vector<IndexSet>     relevant;
+    AffineConstraints<double> homogeneous_constraints;
+    double                    frame_velocity = 0.;
+    double                    residual_scale = 0.; ///< largest residual norm so far
+
+    TrilinosWrappers::BlockSparseMatrix system_matrix; ///< the Jacobian
+    TrilinosWrappers::BlockSparseMatrix schur_matrix;  ///< M_p in block (1,1)
+    std::unique_ptr<TrilinosWrappers::PreconditionAMG> velocity_amg;
+    std::unique_ptr<TrilinosWrappers::PreconditionILU> schur_ilu;
+
+    TrilinosWrappers::MPI::BlockVector current;     ///< ghosted (v, p)
+    TrilinosWrappers::MPI::BlockVector previous;    ///< ghosted (vⁿ, pⁿ)
+    TrilinosWrappers::MPI::BlockVector residual;    ///< owned
+    TrilinosWrappers::MPI::BlockVector update;      ///< owned
+    TrilinosWrappers::MPI::BlockVector body_force;  ///< owned load vector
+  };
+} // namespace rbc_ifem
+
+#endif

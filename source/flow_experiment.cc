@@ -84,5 +84,7 @@ namespace rbc_ifem
     write_timing(timer, directory, communicator);
     pcout << "  wrote " << directory << "/: parameters.prm, flow.csv, flow.pvd, timing.csv"
           << std::endl;
+    pcout << "  peak memory: " << peak_memory_mb(communicator)
+          << " MB (largest over ranks)" << std::endl;
   }
 } // namespace rbc_ifem

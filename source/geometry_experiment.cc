@@ -42,10 +42,7 @@ namespace rbc_ifem
     write_output(prm);
     write_timing(timer, parameters.output_directory, communicator);
 
-    Utilities::System::MemoryStats memory;
-    Utilities::System::get_memory_stats(memory);
-    pcout << "  peak memory: "
-          << Utilities::MPI::max(memory.VmHWM, communicator) / 1024.
+    pcout << "  peak memory: " << peak_memory_mb(communicator)
           << " MB (largest over ranks)" << std::endl;
   }
 

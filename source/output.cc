@@ -170,6 +170,14 @@ namespace rbc_ifem
     write_pvd(directory, name, {{0., name + ".vtu"}}, communicator);
   }
 
+  double
+  peak_memory_mb(const MPI_Comm communicator)
+  {
+    Utilities::System::MemoryStats memory;
+    Utilities::System::get_memory_stats(memory);
+    return Utilities::MPI::max(memory.VmHWM, communicator) / 1024.;
+  }
+
   void
   write_timing(const TimerOutput &timer,
                const std::string &directory,

@@ -71,6 +71,10 @@ namespace rbc_ifem
                   const std::string &                              name,
                   const MPI_Comm                                   communicator);
 
+  /// The peak resident memory of the largest rank, in MB.
+  double
+  peak_memory_mb(const MPI_Comm communicator);
+
   /// timing.csv (section,calls,wall_seconds) from a TimerOutput, rank 0.
   void
   write_timing(const TimerOutput &timer,

@@ -71,7 +71,8 @@ namespace rbc_ifem
                 << m.max_velocity << ',' << m.divergence_l2 << ',' << f.frame_velocity << ','
                 << report.newton_iterations << ',' << report.linear_iterations << std::endl;
         pcout << "  step " << step << ", t = " << time << " s: " << report.newton_iterations
-              << " Newton, " << report.linear_iterations << " FGMRES iterations; flow "
+              << " Newton, " << report.linear_iterations << " FGMRES iterations, residual "
+              << report.residuals.front() << " -> " << report.final_residual << "; flow "
               << m.flow_rate << " µm³/s, Δp " << m.pressure_drop << " pN/µm², |∇·v| "
               << m.divergence_l2 << std::endl;
 

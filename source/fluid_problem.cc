@@ -304,7 +304,7 @@ namespace rbc_ifem
     return residual.l2_norm();
   }
 
-  unsigned int
+  std::pair<unsigned int, double>
   FluidProblem::solve_linear_system()
   {
     TimerOutput::Scope scope(timer, "fluid: solve");
@@ -342,7 +342,7 @@ namespace rbc_ifem
     next = current;
     next += update;
     current = next;
-    return control.last_step();
+    return {control.last_step(), control.last_value()};
   }
 
   StepReport
@@ -368,13 +368,16 @@ namespace rbc_ifem
       return r;
     };
 
-    const double first = check_finite(assemble_residual(navier_stokes));
+    const double first    = check_finite(assemble_residual(navier_stokes));
+    report.final_residual = first;
     if (first <= parameters.linear_tolerance * residual_scale)
       return report;
     if (!navier_stokes)
       {
         // Linear: one solve with the stored operator is exact.
-        report.linear_iterations = solve_linear_system();
+        const auto [iterations, linear_residual] = solve_linear_system();
+        report.linear_iterations = iterations;
+        report.final_residual    = linear_residual;
         report.newton_iterations = 1;
         return report;
       }
@@ -392,11 +395,26 @@ namespace rbc_ifem
           }
         assemble_jacobian(true);
         build_preconditioner();
-        report.linear_iterations += solve_linear_system();
+        const unsigned int iterations = solve_linear_system().first;
+        report.linear_iterations += iterations;
         ++report.newton_iterations;
         r = check_finite(assemble_residual(true));
+        report.final_residual = r;
       }
     return report;
+  }
+
+  void
+  FluidProblem::set_time_step(const double new_time_step)
+  {
+    if (new_time_step == time_step)
+      return;
+    time_step = new_time_step;
+    if (parameters.model == "Stokes")
+      {
+        assemble_jacobian(false);
+        build_preconditioner();
+      }
   }
 
   void

@@ -57,7 +57,10 @@ namespace rbc_ifem
   {
     unsigned int newton_iterations = 0;
     unsigned int linear_iterations = 0; ///< FGMRES, summed over Newton
-    std::vector<double> residuals;      ///< ‖R‖ before each Newton update and after the last
+    std::vector<double> residuals;      ///< ‖R‖ before each Newton update (and, Navier-Stokes, after the last)
+    /// ‖R‖ at the end of the step: for Stokes FGMRES's final residual (the
+    /// problem is linear), for Navier-Stokes the last Newton residual.
+    double final_residual = 0.;
   };
 
   /**
@@ -103,6 +106,13 @@ namespace rbc_ifem
     /// Distribute DoFs, build constraints, matrices and (Stokes) the preconditioner.
     void
     setup();
+
+    /**
+     * Change the time step Δt [s]. In Stokes mode the operator and its
+     * preconditioner depend on it, so they are rebuilt (only if Δt changed).
+     */
+    void
+    set_time_step(const double time_step);
 
     /// Change the frame velocity U_frame [µm/s]; takes effect at the next step.
     void
@@ -154,12 +164,13 @@ namespace rbc_ifem
     build_preconditioner();
     double
     assemble_residual(const bool with_convection);
-    unsigned int
+    /// Solve J δ = -R and update; returns FGMRES's iterations and final residual.
+    std::pair<unsigned int, double>
     solve_linear_system();
 
     const FluidParameters    parameters;
     const GeometryParameters geometry;
-    const double             time_step;
+    double                   time_step;
     const MPI_Comm           communicator;
     TimerOutput &            timer;
 

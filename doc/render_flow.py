@@ -12,6 +12,8 @@ import sys
 
 import vtk
 
+from vtk_picture import read, save_png
+
 
 def last_field(directory):
     """The file of the last entry of DIRECTORY/flow.pvd."""
@@ -21,10 +23,7 @@ def last_field(directory):
 
 
 def main(directory, picture):
-    reader = vtk.vtkXMLPUnstructuredGridReader()
-    reader.SetFileName(last_field(directory))
-    reader.Update()
-    field = reader.GetOutput()
+    field = read(last_field(directory))
     field.GetPointData().SetActiveVectors("velocity")
 
     plane = vtk.vtkPlane()
@@ -95,24 +94,8 @@ def main(directory, picture):
     renderer.AddActor(plane_actor)
     renderer.AddActor(arrow_actor)
     renderer.AddActor2D(bar)
-    camera = renderer.GetActiveCamera()
-    camera.SetFocalPoint(10, 0, 0)
-    camera.SetPosition(10, 0, 50)
-    camera.SetViewUp(0, 1, 0)
-    renderer.ResetCamera()
-    camera.Zoom(1.3)
-
-    window = vtk.vtkRenderWindow()
-    window.AddRenderer(renderer)
-    window.SetSize(1200, 600)
-    window.Render()
-    image = vtk.vtkWindowToImageFilter()
-    image.SetInput(window)
-    writer = vtk.vtkPNGWriter()
-    writer.SetFileName(picture)
-    writer.SetInputConnection(image.GetOutputPort())
-    writer.Write()
-
+    save_png(renderer, picture, focal_point=(10, 0, 0), position=(10, 0, 50),
+             view_up=(0, 1, 0), zoom=1.3, size=(1200, 600))
 
 if __name__ == "__main__":
     if len(sys.argv) != 3:

@@ -12,12 +12,7 @@ import sys
 
 import vtk
 
-
-def read(path):
-    reader = vtk.vtkXMLGenericDataObjectReader()
-    reader.SetFileName(path)
-    reader.Update()
-    return reader.GetOutput()
+from vtk_picture import read, save_png
 
 
 def outer_surface(algorithm_or_data):
@@ -86,24 +81,8 @@ def main(directory, picture):
     lumen.GetProperty().SetOpacity(0.25)
     renderer.AddActor(lumen)
 
-    camera = renderer.GetActiveCamera()
-    camera.SetFocalPoint(10, 0, 0)
-    camera.SetPosition(-14, -30, 13)
-    camera.SetViewUp(0, 0, 1)
-    renderer.ResetCamera()
-    camera.Zoom(1.5)
-
-    window = vtk.vtkRenderWindow()
-    window.AddRenderer(renderer)
-    window.SetSize(1200, 700)
-    window.Render()
-    image = vtk.vtkWindowToImageFilter()
-    image.SetInput(window)
-    writer = vtk.vtkPNGWriter()
-    writer.SetFileName(picture)
-    writer.SetInputConnection(image.GetOutputPort())
-    writer.Write()
-
+    save_png(renderer, picture, focal_point=(10, 0, 0), position=(-14, -30, 13),
+             view_up=(0, 0, 1), zoom=1.5, size=(1200, 700))
 
 if __name__ == "__main__":
     if len(sys.argv) != 3:

@@ -98,20 +98,18 @@ namespace rbc_ifem
     const types::global_dof_index n_v = dofs_per_block[0], n_p = dofs_per_block[1];
 
     const IndexSet owned_dofs = dof_handler.locally_owned_dofs();
-    IndexSet       relevant_dofs;
     DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
     owned    = {owned_dofs.get_view(0, n_v), owned_dofs.get_view(n_v, n_v + n_p)};
     relevant = {relevant_dofs.get_view(0, n_v), relevant_dofs.get_view(n_v, n_v + n_p)};
 
     make_constraints(homogeneous_constraints, 0.);
+    constrained_frame_velocity = std::numeric_limits<double>::quiet_NaN();
   }
 
   void
   FluidProblem::make_constraints(AffineConstraints<double> &constraints,
                                  const double               scale) const
   {
-    IndexSet relevant_dofs;
-    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
     constraints.clear();
     constraints.reinit(relevant_dofs);
     DoFTools::make_hanging_node_constraints(dof_handler, constraints);
@@ -351,11 +349,14 @@ namespace rbc_ifem
     previous = current;
     {
       // Start from the old field with this step's boundary values.
-      AffineConstraints<double> constraints;
-      make_constraints(constraints, 1.);
+      if (frame_velocity != constrained_frame_velocity)
+        {
+          make_constraints(boundary_constraints, 1.);
+          constrained_frame_velocity = frame_velocity;
+        }
       TrilinosWrappers::MPI::BlockVector guess(owned, communicator);
       guess = previous;
-      constraints.distribute(guess);
+      boundary_constraints.distribute(guess);
       current = guess;
     }
 

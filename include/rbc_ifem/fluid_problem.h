@@ -14,6 +14,7 @@
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
 #include <deal.II/lac/trilinos_precondition.h>
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -181,8 +182,13 @@ namespace rbc_ifem
 
     std::vector<IndexSet>     owned;
     std::vector<IndexSet>     relevant;
+    IndexSet                  relevant_dofs;
     AffineConstraints<double> homogeneous_constraints;
+    /// Hanging nodes and this frame velocity's boundary values; rebuilt
+    /// only when the frame velocity changes.
+    AffineConstraints<double> boundary_constraints;
     double                    frame_velocity = 0.;
+    double                    constrained_frame_velocity = std::numeric_limits<double>::quiet_NaN();
     double                    residual_scale = 0.; ///< largest residual norm so far
 
     TrilinosWrappers::BlockSparseMatrix system_matrix; ///< the Jacobian

@@ -9,13 +9,8 @@
 # coupled run). Prints a Markdown table. RBC_IFEM defaults to
 # build/rbc-ifem, RANKS to 1.
 set -euo pipefail
-here=$(cd "$(dirname "$0")/.." && pwd)
-exe=${1:-$here/build/rbc-ifem}
-ranks=${2:-1}
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
+source "$(dirname "$0")/common.sh"
+benchmark_setup "$@"
 
 echo "| refinements | DoFs | velocity nodes | setup [s] | of it: assembly [s] | of it: AMG + ILU [s] | step 1: FGMRES its | step 2: FGMRES its | solve per iteration [ms] | residual assembly per step [s] | peak memory [MB] |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|"

@@ -6,13 +6,8 @@
 # wall seconds of each TimerOutput section, and the peak memory. Prints a
 # Markdown table. RBC_IFEM defaults to build/rbc-ifem, RANKS to 1.
 set -euo pipefail
-here=$(cd "$(dirname "$0")/.." && pwd)
-exe=${1:-$here/build/rbc-ifem}
-ranks=${2:-1}
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
+source "$(dirname "$0")/common.sh"
+benchmark_setup "$@"
 
 echo "| global refinements | surface refinements | fluid cells | diffusion cells | membranes [s] | clearance [s] | fluid mesh [s] | diffusion mesh [s] | output [s] | peak memory [MB] |"
 echo "|---|---|---|---|---|---|---|---|---|---|"

@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <stdexcept>
 
 namespace rbc_ifem
@@ -138,34 +139,40 @@ namespace rbc_ifem
   }
 
   void
-  write_membranes(const std::vector<const Triangulation<2, 3> *> &surfaces,
-                  const MappingQ<2, 3> &                            mapping,
-                  const std::string &                              directory,
-                  const std::string &                              name,
-                  const MPI_Comm                                   communicator)
+  write_membranes(
+    const std::vector<const Triangulation<2, 3> *> &          surfaces,
+    const MappingQ<2, 3> &                                    mapping,
+    const std::string &                                       directory,
+    const std::string &                                       name,
+    const MPI_Comm                                            communicator,
+    const std::function<void(unsigned int, DataOut<2, 3> &)> &add_fields)
   {
-    if (Utilities::MPI::this_mpi_process(communicator) != 0)
+    if (Utilities::MPI::this_mpi_process(communicator) != 0 || surfaces.empty())
       return;
 
-    std::vector<DataOutBase::Patch<2, 3>> patches;
+    // One DataOut per membrane; the patches of all go into the first.
+    std::vector<Vector<float>>                  cell_index(surfaces.size());
+    std::vector<std::unique_ptr<DataOut<2, 3>>> outputs;
     for (unsigned int i = 0; i < surfaces.size(); ++i)
       {
-        Vector<float> cell_index(surfaces[i]->n_active_cells());
-        cell_index = i;
-        DataOut<2, 3> data_out;
+        cell_index[i].reinit(surfaces[i]->n_active_cells());
+        cell_index[i] = i;
+        outputs.push_back(std::make_unique<DataOut<2, 3>>());
+        DataOut<2, 3> &data_out = *outputs.back();
         data_out.attach_triangulation(*surfaces[i]);
-        data_out.add_data_vector(cell_index, "cell", DataOut<2, 3>::type_cell_data);
+        data_out.add_data_vector(cell_index[i], "cell", DataOut<2, 3>::type_cell_data);
+        if (add_fields)
+          add_fields(i, data_out);
         data_out.build_patches(mapping,
                                mapping.get_degree(),
                                DataOut<2, 3>::curved_inner_cells);
-        for (auto patch : data_out.get_patches())
-          {
-            patch.patch_index = patches.size();
-            patches.push_back(patch);
-          }
+        if (i > 0)
+          outputs[0]->merge_patches(data_out);
       }
+    DataOut<2, 3> &all = *outputs[0];
+    all.set_flags(fast_vtk_flags());
     write_file_atomically(directory + "/" + name + ".vtu", [&](std::ostream &out) {
-      DataOutBase::write_vtu(patches, {"cell"}, {}, fast_vtk_flags(), out);
+      all.write_vtu(out);
     });
     write_pvd(directory, name, {{0., name + ".vtu"}}, communicator);
   }

@@ -1,3 +1,4 @@
+#include <rbc_ifem/capillary_mesh.h>
 #include <rbc_ifem/input_error.h>
 #include <rbc_ifem/parameters.h>
 
@@ -346,15 +347,180 @@ namespace rbc_ifem
   }
 
   void
+  DiffusionParameters::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Diffusion");
+    prm.declare_entry("Alveolar pressure",
+                      "1",
+                      Patterns::Double(0.),
+                      "CO partial pressure P_A on the outer surface of the gas "
+                      "layer [Torr]. DM = CO flow / P_A does not depend on it.");
+    const auto declare_material = [&](const std::string &name,
+                                      const std::string &diffusivity,
+                                      const std::string &solubility,
+                                      const std::string &note) {
+      prm.declare_entry(name + " diffusivity",
+                        diffusivity,
+                        Patterns::Double(0.),
+                        "CO diffusion coefficient D in the " + note + " [µm²/s].");
+      prm.declare_entry(name + " solubility",
+                        solubility,
+                        Patterns::Double(0.),
+                        "CO solubility α in the " + note +
+                          " [Torr⁻¹, volume of CO (STPD) per volume per Torr].");
+    };
+    declare_material("Plasma", "2.453e3", "2.363e-5", "plasma (lumen; paper, Table 2)");
+    declare_material("Wall", "2.453e3", "2.363e-5", "vessel wall tissue (paper, Table 2)");
+    declare_material("Gas",
+                     "2.413e7",
+                     "1.159e-3",
+                     "alveolar gas. D from the paper's Table 2; α of an ideal "
+                     "gas at 37 °C in the same units: (1/760) (273.15/310.15) "
+                     "= 1.159e-3");
+    prm.declare_entry("Finite element degree",
+                      "1",
+                      Patterns::Integer(1, 3),
+                      "Degree k of the continuous FE_Q<3>(k) for P (the mapping "
+                      "has the same degree).");
+    prm.declare_entry("Augmentation",
+                      "10",
+                      Patterns::Double(0.),
+                      "Augmented-Lagrangian weight γ (dimensionless) of the "
+                      "membrane constraint. It does not change the solution, "
+                      "only the solver: larger γ makes the multiplier block "
+                      "easier and the P block harder. See doc/diffusion.md.");
+    prm.declare_entry("Linear solver tolerance",
+                      "1e-8",
+                      Patterns::Double(0.),
+                      "FGMRES stops when the residual has fallen by this "
+                      "factor.");
+    prm.declare_entry("Max linear iterations",
+                      "1000",
+                      Patterns::Integer(1),
+                      "FGMRES gives up (and the run stops) after this many "
+                      "iterations.");
+    prm.leave_subsection();
+  }
+
+  void
+  DiffusionParameters::parse(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Diffusion");
+    alveolar_pressure     = prm.get_double("Alveolar pressure");
+    plasma_diffusivity    = prm.get_double("Plasma diffusivity");
+    plasma_solubility     = prm.get_double("Plasma solubility");
+    wall_diffusivity      = prm.get_double("Wall diffusivity");
+    wall_solubility       = prm.get_double("Wall solubility");
+    gas_diffusivity       = prm.get_double("Gas diffusivity");
+    gas_solubility        = prm.get_double("Gas solubility");
+    degree                = prm.get_integer("Finite element degree");
+    augmentation          = prm.get_double("Augmentation");
+    linear_tolerance      = prm.get_double("Linear solver tolerance");
+    max_linear_iterations = prm.get_integer("Max linear iterations");
+    prm.leave_subsection();
+    const std::pair<const char *, double> positive[] = {
+      {"Diffusion/Alveolar pressure", alveolar_pressure},
+      {"Diffusion/Plasma diffusivity", plasma_diffusivity},
+      {"Diffusion/Plasma solubility", plasma_solubility},
+      {"Diffusion/Wall diffusivity", wall_diffusivity},
+      {"Diffusion/Wall solubility", wall_solubility},
+      {"Diffusion/Gas diffusivity", gas_diffusivity},
+      {"Diffusion/Gas solubility", gas_solubility},
+      {"Diffusion/Augmentation", augmentation},
+      {"Diffusion/Linear solver tolerance", linear_tolerance}};
+    for (const auto &[name, value] : positive)
+      if (!(value > 0.))
+        throw InputError(name, to_string(value), "it must be > 0.");
+  }
+
+  double
+  DiffusionParameters::permeability(const unsigned int material_id) const
+  {
+    switch (material_id)
+      {
+        case Material::plasma:
+          return plasma_solubility * plasma_diffusivity;
+        case Material::vessel_wall:
+          return wall_solubility * wall_diffusivity;
+        case Material::gas:
+          return gas_solubility * gas_diffusivity;
+        default:
+          throw std::logic_error("no CO diffusion data for material id " +
+                                 std::to_string(material_id));
+      }
+  }
+
+  void
+  LayoutStudyParameters::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Layout study");
+    prm.declare_entry("Kinds",
+                      "uniform, random, clustered",
+                      Patterns::List(Patterns::Selection("uniform|random|clustered"), 1),
+                      "Experiment 'layouts': the layout kinds to compare.");
+    prm.declare_entry("Numbers of cells",
+                      "1, 2, 3, 4, 5, 6, 7",
+                      Patterns::List(Patterns::Integer(1), 1),
+                      "Experiment 'layouts': the numbers of cells N to place "
+                      "in the segment, each in every kind.");
+    prm.declare_entry("Random seeds",
+                      "5",
+                      Patterns::Integer(1),
+                      "Experiment 'layouts': random layouts are drawn with "
+                      "seeds Layout/Seed, Layout/Seed + 1, ...; layouts.csv "
+                      "reports their mean and spread.");
+    prm.leave_subsection();
+  }
+
+  void
+  LayoutStudyParameters::parse(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Layout study");
+    kinds = Utilities::split_string_list(prm.get("Kinds"));
+    numbers_of_cells.clear();
+    for (const int n : Utilities::string_to_int(Utilities::split_string_list(prm.get("Numbers of cells"))))
+      numbers_of_cells.push_back(n);
+    n_seeds = prm.get_integer("Random seeds");
+    prm.leave_subsection();
+  }
+
+  void
+  MeshConvergenceParameters::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Mesh convergence");
+    prm.declare_entry("Number of levels",
+                      "4",
+                      Patterns::Integer(2, 6),
+                      "Experiment 'mesh convergence': level 0 is the mesh of "
+                      "subsection Mesh and Cells/Surface refinements; each "
+                      "further level refines the diffusion mesh's band and "
+                      "the membranes once more.");
+    prm.leave_subsection();
+  }
+
+  void
+  MeshConvergenceParameters::parse(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Mesh convergence");
+    n_levels = prm.get_integer("Number of levels");
+    prm.leave_subsection();
+  }
+
+  void
   Parameters::declare(ParameterHandler &prm)
   {
     prm.declare_entry("Experiment",
                       "geometry",
-                      Patterns::Selection("geometry|flow"),
+                      Patterns::Selection("geometry|diffusion|layouts|mesh convergence|flow"),
                       "What to run. geometry: build the fluid and diffusion "
-                      "meshes and the cell layout, and write them out. flow: "
-                      "the plasma flow in the capillary without cells, for "
-                      "Time/Number of steps (flow.csv, VTU of v and p).");
+                      "meshes and the cell layout, and write them out. "
+                      "diffusion: steady CO uptake of the layout (dm.csv, "
+                      "VTU of P and of the membrane flux). layouts: DM for "
+                      "every kind and number of cells of subsection Layout "
+                      "study (layouts.csv). mesh convergence: DM of the "
+                      "layout on successively finer meshes (convergence.csv). "
+                      "flow: the plasma flow in the capillary without cells, "
+                      "for Time/Number of steps (flow.csv, VTU of v and p).");
     prm.declare_entry("Output directory",
                       "output/run",
                       Patterns::DirectoryName(),
@@ -365,6 +531,9 @@ namespace rbc_ifem
     LayoutParameters::declare(prm);
     FluidParameters::declare(prm);
     TimeParameters::declare(prm);
+    DiffusionParameters::declare(prm);
+    LayoutStudyParameters::declare(prm);
+    MeshConvergenceParameters::declare(prm);
   }
 
   void
@@ -384,6 +553,9 @@ namespace rbc_ifem
     layout.parse(prm);
     fluid.parse(prm);
     time.parse(prm);
+    diffusion.parse(prm);
+    layout_study.parse(prm);
+    mesh_convergence.parse(prm);
     geometry.validate();
     cells.validate(geometry);
   }

@@ -6,6 +6,7 @@
 #include <deal.II/base/timer.h>
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/grid/tria.h>
+#include <deal.II/numerics/data_out.h>
 
 #include <functional>
 #include <ostream>
@@ -63,13 +64,18 @@ namespace rbc_ifem
   /**
    * All membrane surfaces in one NAME.vtu (and NAME.pvd), curved with
    * @p mapping, with the cell index as cell data. Written by rank 0.
+   * @p add_fields(i, data_out), if given, adds the fields of membrane i
+   * (the same names on every membrane) to its DataOut before the patches
+   * are built.
    */
   void
-  write_membranes(const std::vector<const Triangulation<2, 3> *> &surfaces,
-                  const MappingQ<2, 3> &                            mapping,
-                  const std::string &                              directory,
-                  const std::string &                              name,
-                  const MPI_Comm                                   communicator);
+  write_membranes(
+    const std::vector<const Triangulation<2, 3> *> &                  surfaces,
+    const MappingQ<2, 3> &                                            mapping,
+    const std::string &                                               directory,
+    const std::string &                                               name,
+    const MPI_Comm                                                    communicator,
+    const std::function<void(unsigned int, DataOut<2, 3> &)> &add_fields = {});
 
   /// The peak resident memory of the largest rank, in MB.
   double

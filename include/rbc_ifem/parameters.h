@@ -5,6 +5,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <string>
+#include <vector>
 
 /**
  * Everything rbc-ifem reads from a .prm file. Units (design.md, Section 3):
@@ -110,6 +111,63 @@ namespace rbc_ifem
     parse(ParameterHandler &prm);
   };
 
+  /**
+   * Steady CO diffusion (subsection "Diffusion"): ∇·(αD∇P) = 0 with αD
+   * piecewise constant per material, P = P_A on the alveolar surface and
+   * P = 0 on every membrane (imposed by a Lagrange multiplier, see
+   * CODiffusion). Defaults from the paper's Table 2.
+   */
+  struct DiffusionParameters
+  {
+    double       alveolar_pressure    = 1.;        ///< P_A [Torr]
+    double       plasma_diffusivity   = 2.453e3;   ///< D [µm²/s]
+    double       plasma_solubility    = 2.363e-5;  ///< α [Torr⁻¹]
+    double       wall_diffusivity     = 2.453e3;   ///< D [µm²/s]
+    double       wall_solubility      = 2.363e-5;  ///< α [Torr⁻¹]
+    double       gas_diffusivity      = 2.413e7;   ///< D [µm²/s]
+    double       gas_solubility       = 1.159e-3;  ///< α [Torr⁻¹]
+    unsigned int degree               = 1;         ///< of FE_Q<3> for P
+    double       augmentation         = 10.;       ///< γ, dimensionless
+    double       linear_tolerance     = 1e-8;      ///< relative, FGMRES
+    unsigned int max_linear_iterations = 1000;
+
+    /// αD of the material with this id (Material::plasma, ...) [µm²/(s Torr)].
+    double
+    permeability(const unsigned int material_id) const;
+
+    static void
+    declare(ParameterHandler &prm);
+    void
+    parse(ParameterHandler &prm);
+  };
+
+  /**
+   * The paper's layout experiment (subsection "Layout study"): every Kind
+   * for every number of cells, several seeds for random layouts.
+   */
+  struct LayoutStudyParameters
+  {
+    std::vector<std::string>  kinds{"uniform", "random", "clustered"};
+    std::vector<unsigned int> numbers_of_cells{1, 2, 3, 4, 5, 6, 7};
+    unsigned int              n_seeds = 5;
+
+    static void
+    declare(ParameterHandler &prm);
+    void
+    parse(ParameterHandler &prm);
+  };
+
+  /// The mesh-convergence experiment (subsection "Mesh convergence").
+  struct MeshConvergenceParameters
+  {
+    unsigned int n_levels = 4;
+
+    static void
+    declare(ParameterHandler &prm);
+    void
+    parse(ParameterHandler &prm);
+  };
+
   /// All parameters of one run.
   struct Parameters
   {
@@ -121,6 +179,9 @@ namespace rbc_ifem
     LayoutParameters   layout;
     FluidParameters    fluid;
     TimeParameters     time;
+    DiffusionParameters       diffusion;
+    LayoutStudyParameters     layout_study;
+    MeshConvergenceParameters mesh_convergence;
 
     /// Declare every parameter, with its pattern and documentation.
     static void

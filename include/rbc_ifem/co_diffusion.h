@@ -1,0 +1,187 @@
+#ifndef rbc_ifem_co_diffusion_h
+#define rbc_ifem_co_diffusion_h
+
+#include <rbc_ifem/parameters.h>
+
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/distributed/shared_tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_block_sparse_matrix.h>
+#include <deal.II/lac/trilinos_parallel_block_vector.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace rbc_ifem
+{
+  using namespace dealii;
+
+  /**
+   * Steady CO diffusion into the red cells, the paper's Section 3.2:
+   *
+   *   -∇·(αD ∇P) = 0 in the volume mesh,  P = P_A on one boundary id,
+   *   no flux elsewhere on the boundary,  P = 0 on every membrane.
+   *
+   * The membranes (Triangulation<2,3>) do not conform to the volume mesh.
+   * As in deal.II's step-60, P = 0 is imposed weakly through a Lagrange
+   * multiplier λ in FE_Q<2,3>(1) on each membrane:
+   *
+   *   (αD ∇P, ∇q) + (λ, q)_Γ = 0    for all q,
+   *   (μ, P)_Γ               = 0    for all μ.
+   *
+   * λ is the jump of αD ∂P/∂n across the membrane (n out of the cell): the
+   * CO flux density into the cell [µm/s, per Torr of P_A × P_A], so the flux
+   * map and DM come out of the solve. Inside a cell P ≈ 0; what little
+   * gradient the discrete field keeps there tends to zero with the mesh
+   * size, which the analytic checks in tests/ measure.
+   *
+   * The saddle point system is solved by FGMRES with an augmented
+   * Lagrangian block-triangular preconditioner (Benzi & Olshanskii, SIAM J.
+   * Sci. Comput. 28, 2006): the P block is A + γ Bᵀ W B (W the inverse
+   * lumped membrane mass), which leaves the solution unchanged because
+   * B P = 0 there, and makes the Schur complement of the multiplier close to
+   * (γ W)⁻¹, so that one diagonal scaling preconditions it independently of
+   * the mesh size; the P block gets one AMG V-cycle per iteration.
+   *
+   * The volume mesh is a parallel::shared::Triangulation: every rank knows
+   * every cell, so every rank can locate every membrane point.
+   */
+  class CODiffusion
+  {
+  public:
+    /**
+     * @p permeability maps a material id of the volume mesh to αD
+     * [µm²/(s Torr)]; @p pressure_boundary is the boundary id where
+     * P = P_A holds.
+     */
+    CODiffusion(const DiffusionParameters &                parameters,
+                const std::function<double(unsigned int)> &permeability,
+                const types::boundary_id                   pressure_boundary,
+                const MPI_Comm                             communicator,
+                TimerOutput &                              timer);
+    ~CODiffusion();
+
+    /**
+     * Distribute the DoFs of P on @p mesh and of λ on @p membranes, locate
+     * the membranes' quadrature points in @p mesh, build the sparsity
+     * patterns. Throws InputError if a membrane leaves the mesh.
+     */
+    void
+    setup(const parallel::shared::Triangulation<3> &      mesh,
+          const std::vector<const Triangulation<2, 3> *> &membranes,
+          const MappingQ<2, 3> &                          membrane_mapping);
+
+    /// Assemble the matrices and build the preconditioner.
+    void
+    assemble();
+
+    /// Solve for P and λ; throws SolverFailure if FGMRES does not converge.
+    void
+    solve();
+
+    /// CO flow into each membrane, ∫_Γi λ dA [µm³/s at P in Torr × Torr⁻¹ ...].
+    const std::vector<double> &
+    membrane_flows() const;
+
+    /// Total CO flow into all membranes [µm³ s⁻¹ (Torr⁻¹ per αD units) × P_A].
+    double
+    total_flow() const;
+
+    /// DM = total flow / P_A [µm³ s⁻¹ Torr⁻¹].
+    double
+    dm_total() const;
+
+    /**
+     * CO flow out through the pressure boundary, computed independently of
+     * λ from the residual of the P equation on the boundary DoFs. It equals
+     * total_flow() to solver tolerance (conservation).
+     */
+    double
+    boundary_flow() const;
+
+    types::global_dof_index
+    n_pressure_dofs() const;
+    types::global_dof_index
+    n_multiplier_dofs() const;
+    unsigned int
+    n_iterations() const;
+
+    /**
+     * P as NAME_0000.pvtu (+ pieces, NAME.pvd) and the membranes as
+     * NAME_membranes.vtu (+ .pvd) with the flux density λ as a scalar
+     * "co_flux" and as the vector "co_flux_vector" = -λ n (pointing into the
+     * cell: the direction CO moves, the paper's Fig. 4f).
+     */
+    void
+    write_output(const std::string &directory, const std::string &name) const;
+
+  private:
+    struct CouplingData;
+
+    void
+    setup_multipliers();
+    void
+    locate_membrane_points();
+    void
+    setup_constraints();
+    void
+    setup_matrices();
+    void
+    assemble_stiffness();
+    void
+    assemble_coupling();
+    void
+    assemble_augmentation();
+    void
+    compute_flows();
+
+    const DiffusionParameters                 parameters;
+    const std::function<double(unsigned int)> permeability;
+    const types::boundary_id                  pressure_boundary;
+    const MPI_Comm                            communicator;
+    TimerOutput &                             timer;
+
+    const parallel::shared::Triangulation<3> *mesh = nullptr;
+    FE_Q<3>                                   fe;
+    MappingQ<3>                               mapping;
+    DoFHandler<3>                             dof_handler;
+    IndexSet                                  owned_dofs;
+    AffineConstraints<double>                 constraints;
+
+    std::vector<const Triangulation<2, 3> *>        membranes;
+    const MappingQ<2, 3> *                          membrane_mapping = nullptr;
+    FE_Q<2, 3>                                      multiplier_fe;
+    std::vector<std::unique_ptr<DoFHandler<2, 3>>>  multiplier_dof_handlers;
+    std::vector<types::global_dof_index>            multiplier_offsets;
+    IndexSet                                        owned_multipliers;
+    std::unique_ptr<CouplingData>                   coupling;
+
+    /// Scale of the constraint rows, αD_plasma / h_Γ, so both rows of the
+    /// system have the units of the P equation (see doc/diffusion.md).
+    double constraint_scale = 1.;
+
+    TrilinosWrappers::SparseMatrix    stiffness;    ///< A + γ Bᵀ W B
+    TrilinosWrappers::SparseMatrix    coupling_matrix; ///< B, λ rows × P columns
+    TrilinosWrappers::MPI::Vector     multiplier_weights; ///< γ W
+    TrilinosWrappers::PreconditionAMG amg;
+    TrilinosWrappers::MPI::BlockVector solution;
+    TrilinosWrappers::MPI::BlockVector rhs;
+
+    Vector<double>      multiplier_mass;   ///< ∫ μ_i dA, every i, every rank
+    Vector<double>      multiplier_values; ///< λ, all of it, on every rank
+    std::vector<double> flows;
+    double              alveolar_flow = 0.;
+    unsigned int        iterations    = 0;
+  };
+} // namespace rbc_ifem
+
+#endif

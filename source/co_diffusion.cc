@@ -1,0 +1,676 @@
+#include <rbc_ifem/co_diffusion.h>
+#include <rbc_ifem/input_error.h>
+#include <rbc_ifem/output.h>
+#include <rbc_ifem/solver_failure.h>
+
+#include <deal.II/base/function.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/grid_tools_cache.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/data_postprocessor.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace rbc_ifem
+{
+  /**
+   * Where the membranes' quadrature points sit in the volume mesh. Point k
+   * of membrane cell c is quadrature point k % n_q of that cell; each entry
+   * of @p points says which volume cell holds it and where in that cell's
+   * reference coordinates. Entries are sorted by membrane cell, then by
+   * volume cell, so a (membrane cell, volume cell) pair is one run.
+   */
+  struct CODiffusion::CouplingData
+  {
+    struct Point
+    {
+      unsigned int                           membrane_cell;
+      unsigned int                           q;
+      typename DoFHandler<3>::active_cell_iterator volume_cell;
+      dealii::Point<3>                       reference;
+    };
+
+    /**
+     * Call @p f(membrane cell, volume cell, first, last) for every run of
+     * points [first, last) shared by one membrane cell and one volume cell.
+     */
+    template <typename Function>
+    void
+    for_each_run(const Function &f) const
+    {
+      for (auto first = points.begin(); first != points.end();)
+        {
+          auto last = first;
+          while (last != points.end() && last->membrane_cell == first->membrane_cell &&
+                 last->volume_cell == first->volume_cell)
+            ++last;
+          f(first->membrane_cell, first->volume_cell, first, last);
+          first = last;
+        }
+    }
+
+    QGauss<2>                                         quadrature{3};
+    std::vector<Point>                                points;
+    std::vector<std::vector<double>>                  JxW; ///< [membrane cell][q]
+    std::vector<std::vector<types::global_dof_index>> multiplier_dofs;
+  };
+
+  namespace
+  {
+    /**
+     * The saddle point operator [A_γ Bᵀ; B 0] on (P, λ), applied without
+     * assembling it: B is stored once, Bᵀ is its transpose product.
+     */
+    class SaddlePointOperator
+    {
+    public:
+      SaddlePointOperator(const TrilinosWrappers::SparseMatrix &A,
+                          const TrilinosWrappers::SparseMatrix &B)
+        : A(A)
+        , B(B)
+      {}
+
+      void
+      vmult(TrilinosWrappers::MPI::BlockVector &      dst,
+            const TrilinosWrappers::MPI::BlockVector &src) const
+      {
+        A.vmult(dst.block(0), src.block(0));
+        B.Tvmult_add(dst.block(0), src.block(1));
+        B.vmult(dst.block(1), src.block(0));
+      }
+
+    private:
+      const TrilinosWrappers::SparseMatrix &A;
+      const TrilinosWrappers::SparseMatrix &B;
+    };
+
+    /**
+     * The augmented-Lagrangian block upper-triangular preconditioner:
+     * λ ← -γ W r_λ (the Schur complement of the augmented system is
+     * (S⁻¹ + γW)⁻¹ ≈ (γW)⁻¹), then P ← AMG(r_P - Bᵀ λ).
+     */
+    class AugmentedLagrangianPreconditioner
+    {
+    public:
+      AugmentedLagrangianPreconditioner(const TrilinosWrappers::SparseMatrix &   B,
+                                        const TrilinosWrappers::MPI::Vector &    gamma_W,
+                                        const TrilinosWrappers::PreconditionAMG &amg,
+                                        const TrilinosWrappers::MPI::Vector &    p_template)
+        : B(B)
+        , gamma_W(gamma_W)
+        , amg(amg)
+        , residual(p_template)
+      {}
+
+      void
+      vmult(TrilinosWrappers::MPI::BlockVector &      dst,
+            const TrilinosWrappers::MPI::BlockVector &src) const
+      {
+        dst.block(1) = src.block(1);
+        dst.block(1).scale(gamma_W);
+        dst.block(1) *= -1.;
+        B.Tvmult(residual, dst.block(1));
+        residual.sadd(-1., 1., src.block(0));
+        amg.vmult(dst.block(0), residual);
+      }
+
+    private:
+      const TrilinosWrappers::SparseMatrix &   B;
+      const TrilinosWrappers::MPI::Vector &    gamma_W;
+      const TrilinosWrappers::PreconditionAMG &amg;
+      mutable TrilinosWrappers::MPI::Vector    residual;
+    };
+
+    /**
+     * D_out K D_in: a linear operator K between block vectors, seen through
+     * diagonal scalings (stored as vectors). The solver works on the
+     * symmetrically Jacobi-scaled system S K S (S x) = S b, so that its
+     * residual weighs the plasma rows as much as the gas rows, whose αD is
+     * 10⁵ times larger: unscaled, a residual of 1e-10 left the flow with an
+     * error of 1e-4.
+     */
+    template <typename Operator>
+    class DiagonallyScaled
+    {
+    public:
+      DiagonallyScaled(const Operator &                          op,
+                       const TrilinosWrappers::MPI::BlockVector &scale)
+        : op(op)
+        , scale(scale)
+        , scaled_src(scale)
+      {}
+
+      void
+      vmult(TrilinosWrappers::MPI::BlockVector &      dst,
+            const TrilinosWrappers::MPI::BlockVector &src) const
+      {
+        scaled_src = src;
+        scaled_src.scale(scale);
+        op.vmult(dst, scaled_src);
+        dst.scale(scale);
+      }
+
+    private:
+      const Operator &                           op;
+      const TrilinosWrappers::MPI::BlockVector & scale;
+      mutable TrilinosWrappers::MPI::BlockVector scaled_src;
+    };
+  } // namespace
+} // namespace rbc_ifem
+
+namespace rbc_ifem
+{
+  namespace
+  {
+    /// -λ n on a membrane: the flux vector, pointing into the cell.
+    class FluxVector : public DataPostprocessorVector<3>
+    {
+    public:
+      FluxVector()
+        : DataPostprocessorVector<3>("co_flux_vector", update_values | update_normal_vectors)
+      {}
+
+      void
+      evaluate_scalar_field(const DataPostprocessorInputs::Scalar<3> &inputs,
+                            std::vector<Vector<double>> &computed) const override
+      {
+        for (unsigned int q = 0; q < inputs.solution_values.size(); ++q)
+          for (unsigned int d = 0; d < 3; ++d)
+            computed[q](d) = -inputs.solution_values[q] * inputs.normals[q][d];
+      }
+    };
+  } // namespace
+
+  CODiffusion::CODiffusion(const DiffusionParameters &                parameters,
+                           const std::function<double(unsigned int)> &permeability,
+                           const types::boundary_id                   pressure_boundary,
+                           const MPI_Comm                             communicator,
+                           TimerOutput &                              timer)
+    : parameters(parameters)
+    , permeability(permeability)
+    , pressure_boundary(pressure_boundary)
+    , communicator(communicator)
+    , timer(timer)
+    , fe(parameters.degree)
+    , mapping(parameters.degree)
+    , multiplier_fe(1)
+  {}
+
+  CODiffusion::~CODiffusion() = default;
+
+  void
+  CODiffusion::setup(const parallel::shared::Triangulation<3> &      mesh,
+                     const std::vector<const Triangulation<2, 3> *> &membranes,
+                     const MappingQ<2, 3> &                          membrane_mapping)
+  {
+    TimerOutput::Scope scope(timer, "diffusion: setup");
+    this->mesh             = &mesh;
+    this->membranes        = membranes;
+    this->membrane_mapping = &membrane_mapping;
+
+    dof_handler.reinit(mesh);
+    dof_handler.distribute_dofs(fe);
+    owned_dofs = dof_handler.locally_owned_dofs();
+    setup_constraints();
+    setup_multipliers();
+    locate_membrane_points();
+    setup_matrices();
+  }
+
+  void
+  CODiffusion::setup_constraints()
+  {
+    IndexSet relevant_dofs;
+    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
+    constraints.clear();
+    constraints.reinit(relevant_dofs);
+    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+    VectorTools::interpolate_boundary_values(mapping,
+                                             dof_handler,
+                                             pressure_boundary,
+                                             Functions::ConstantFunction<3>(
+                                               parameters.alveolar_pressure),
+                                             constraints);
+    constraints.close();
+  }
+
+  void
+  CODiffusion::setup_multipliers()
+  {
+    multiplier_dof_handlers.clear();
+    multiplier_offsets = {0};
+    for (const Triangulation<2, 3> *membrane : membranes)
+      {
+        multiplier_dof_handlers.push_back(std::make_unique<DoFHandler<2, 3>>(*membrane));
+        multiplier_dof_handlers.back()->distribute_dofs(multiplier_fe);
+        multiplier_offsets.push_back(multiplier_offsets.back() +
+                                     multiplier_dof_handlers.back()->n_dofs());
+      }
+    // The multipliers are few (a few thousand per cell): every rank knows
+    // them all, and owns a contiguous share of the rows.
+    const types::global_dof_index n = multiplier_offsets.back();
+    const unsigned int rank    = Utilities::MPI::this_mpi_process(communicator);
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
+    owned_multipliers          = IndexSet(n);
+    owned_multipliers.add_range(n * rank / n_ranks, n * (rank + 1) / n_ranks);
+  }
+
+  void
+  CODiffusion::locate_membrane_points()
+  {
+    coupling = std::make_unique<CouplingData>();
+    FEValues<2, 3> fe_values(*membrane_mapping,
+                             multiplier_fe,
+                             coupling->quadrature,
+                             update_quadrature_points | update_JxW_values);
+    const unsigned int    n_q = coupling->quadrature.size();
+    std::vector<Point<3>> points;
+    double                area = 0.;
+    for (unsigned int m = 0; m < membranes.size(); ++m)
+      for (const auto &cell : multiplier_dof_handlers[m]->active_cell_iterators())
+        {
+          fe_values.reinit(cell);
+          points.insert(points.end(),
+                        fe_values.get_quadrature_points().begin(),
+                        fe_values.get_quadrature_points().end());
+          coupling->JxW.push_back(fe_values.get_JxW_values());
+          for (const double dA : fe_values.get_JxW_values())
+            area += dA;
+          std::vector<types::global_dof_index> dofs(multiplier_fe.n_dofs_per_cell());
+          cell->get_dof_indices(dofs);
+          for (auto &dof : dofs)
+            dof += multiplier_offsets[m];
+          coupling->multiplier_dofs.push_back(dofs);
+        }
+    if (points.empty())
+      return;
+
+    const GridTools::Cache<3> cache(*mesh, mapping);
+    const auto [cells, reference_points, point_indices, missing] =
+      GridTools::compute_point_locations_try_all(cache, points);
+    if (!missing.empty())
+      throw InputError("Layout",
+                       "point " + Utilities::to_string(points[missing[0]][0]) + ", " +
+                         Utilities::to_string(points[missing[0]][1]) + ", " +
+                         Utilities::to_string(points[missing[0]][2]),
+                       "this membrane point lies outside the diffusion mesh; "
+                       "every cell must lie inside the capillary.");
+
+    for (unsigned int c = 0; c < cells.size(); ++c)
+      {
+        const typename DoFHandler<3>::active_cell_iterator volume_cell(
+          &dof_handler.get_triangulation(), cells[c]->level(), cells[c]->index(), &dof_handler);
+        for (unsigned int k = 0; k < point_indices[c].size(); ++k)
+          coupling->points.push_back({point_indices[c][k] / n_q,
+                                      point_indices[c][k] % n_q,
+                                      volume_cell,
+                                      reference_points[c][k]});
+      }
+    std::sort(coupling->points.begin(),
+              coupling->points.end(),
+              [](const CouplingData::Point &a, const CouplingData::Point &b) {
+                return std::make_pair(a.membrane_cell, a.volume_cell->active_cell_index()) <
+                       std::make_pair(b.membrane_cell, b.volume_cell->active_cell_index());
+              });
+
+    const double membrane_cell_size = std::sqrt(area / coupling->JxW.size());
+    constraint_scale =
+      permeability(coupling->points.front().volume_cell->material_id()) / membrane_cell_size;
+  }
+
+  void
+  CODiffusion::setup_matrices()
+  {
+    const types::global_dof_index n_multipliers = multiplier_offsets.back();
+    const unsigned int            rank          = Utilities::MPI::this_mpi_process(communicator);
+
+    // B with every row, on every rank: its rows tell which P DoFs the
+    // augmentation Bᵀ W B couples.
+    AffineConstraints<double> no_constraints;
+    no_constraints.close();
+    DynamicSparsityPattern    b_pattern(n_multipliers, dof_handler.n_dofs());
+    std::vector<types::global_dof_index> volume_dofs(fe.n_dofs_per_cell());
+    coupling->for_each_run([&](const unsigned int membrane_cell,
+                               const auto &       volume_cell,
+                               const auto &,
+                               const auto &) {
+      volume_cell->get_dof_indices(volume_dofs);
+      for (const auto dof : volume_dofs)
+        AssertThrow(!constraints.is_inhomogeneously_constrained(dof),
+                    ExcMessage("a membrane touches the boundary where P = P_A"));
+      no_constraints.add_entries_local_to_global(
+        coupling->multiplier_dofs[membrane_cell], constraints, volume_dofs, b_pattern, false);
+    });
+
+    IndexSet relevant_dofs;
+    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
+    TrilinosWrappers::SparsityPattern a_pattern(owned_dofs, owned_dofs, relevant_dofs, communicator);
+    DoFTools::make_sparsity_pattern(dof_handler, a_pattern, constraints, false, rank);
+    TrilinosWrappers::SparsityPattern c_pattern(owned_multipliers, owned_dofs, communicator);
+    for (types::global_dof_index i = 0; i < n_multipliers; ++i)
+      {
+        std::vector<types::global_dof_index> columns;
+        for (auto entry = b_pattern.begin(i); entry != b_pattern.end(i); ++entry)
+          columns.push_back(entry->column());
+        if (owned_multipliers.is_element(i))
+          c_pattern.add_entries(i, columns.begin(), columns.end());
+        for (const auto j : columns)
+          if (owned_dofs.is_element(j))
+            a_pattern.add_entries(j, columns.begin(), columns.end());
+      }
+    a_pattern.compress();
+    c_pattern.compress();
+    stiffness.reinit(a_pattern);
+    coupling_matrix.reinit(c_pattern);
+
+    solution.reinit({owned_dofs, owned_multipliers}, communicator);
+    rhs.reinit({owned_dofs, owned_multipliers}, communicator);
+    multiplier_weights.reinit(owned_multipliers, communicator);
+  }
+
+  void
+  CODiffusion::assemble()
+  {
+    TimerOutput::Scope scope(timer, "diffusion: assemble");
+    stiffness = 0.;
+    rhs       = 0.;
+    coupling_matrix = 0.;
+    assemble_stiffness();
+    assemble_coupling();
+    assemble_augmentation();
+
+    TrilinosWrappers::PreconditionAMG::AdditionalData amg_data;
+    amg_data.elliptic              = true;
+    amg_data.higher_order_elements = fe.degree > 1;
+    amg_data.smoother_sweeps       = 2;
+    amg_data.aggregation_threshold = 0.02;
+    amg.initialize(stiffness, amg_data);
+  }
+
+  void
+  CODiffusion::assemble_stiffness()
+  {
+    const QGauss<3>    quadrature(fe.degree + 1);
+    FEValues<3>        fe_values(mapping, fe, quadrature, update_gradients | update_JxW_values);
+    const unsigned int n      = fe.n_dofs_per_cell();
+    FullMatrix<double> cell_matrix(n, n);
+    Vector<double>     cell_rhs(n);
+    std::vector<types::global_dof_index> dofs(n);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          const double alpha_D = permeability(cell->material_id());
+          cell_matrix          = 0.;
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int j = 0; j < n; ++j)
+                cell_matrix(i, j) += alpha_D * fe_values.shape_grad(i, q) *
+                                     fe_values.shape_grad(j, q) * fe_values.JxW(q);
+          cell->get_dof_indices(dofs);
+          constraints.distribute_local_to_global(cell_matrix, cell_rhs, dofs, stiffness, rhs.block(0));
+        }
+    stiffness.compress(VectorOperation::add);
+    rhs.compress(VectorOperation::add);
+  }
+
+  void
+  CODiffusion::assemble_coupling()
+  {
+    AffineConstraints<double> no_constraints;
+    no_constraints.close();
+    const unsigned int n_mu = multiplier_fe.n_dofs_per_cell();
+    const unsigned int n_p  = fe.n_dofs_per_cell();
+    std::vector<types::global_dof_index> volume_dofs(n_p);
+    coupling->for_each_run([&](const unsigned int membrane_cell,
+                               const auto &       volume_cell,
+                               const auto &       first,
+                               const auto &       last) {
+      // Only the rows of λ this rank owns: B is stored by rows.
+      const auto &                         rows = coupling->multiplier_dofs[membrane_cell];
+      std::vector<unsigned int>            local_rows;
+      std::vector<types::global_dof_index> owned_rows;
+      for (unsigned int i = 0; i < n_mu; ++i)
+        if (owned_multipliers.is_element(rows[i]))
+          {
+            local_rows.push_back(i);
+            owned_rows.push_back(rows[i]);
+          }
+      if (owned_rows.empty())
+        return;
+
+      FullMatrix<double> local(owned_rows.size(), n_p);
+      for (auto point = first; point != last; ++point)
+        {
+          const double dA =
+            constraint_scale * coupling->JxW[membrane_cell][point->q];
+          const Point<2> &xi = coupling->quadrature.point(point->q);
+          for (unsigned int j = 0; j < n_p; ++j)
+            {
+              const double phi = fe.shape_value(j, point->reference) * dA;
+              for (unsigned int r = 0; r < local_rows.size(); ++r)
+                local(r, j) += multiplier_fe.shape_value(local_rows[r], xi) * phi;
+            }
+        }
+      volume_cell->get_dof_indices(volume_dofs);
+      no_constraints.distribute_local_to_global(
+        local, owned_rows, constraints, volume_dofs, coupling_matrix);
+    });
+    coupling_matrix.compress(VectorOperation::add);
+
+    // Lumped membrane mass m_i = ∫ μ_i dA; W = diag(1 / (σ m_i)).
+    multiplier_mass.reinit(multiplier_offsets.back());
+    const unsigned int n_q = coupling->quadrature.size();
+    for (unsigned int c = 0; c < coupling->JxW.size(); ++c)
+      for (unsigned int q = 0; q < n_q; ++q)
+        for (unsigned int i = 0; i < n_mu; ++i)
+          multiplier_mass[coupling->multiplier_dofs[c][i]] +=
+            multiplier_fe.shape_value(i, coupling->quadrature.point(q)) * coupling->JxW[c][q];
+    for (const auto i : owned_multipliers)
+      multiplier_weights[i] =
+        parameters.augmentation / (constraint_scale * multiplier_mass[i]);
+    multiplier_weights.compress(VectorOperation::insert);
+  }
+
+  void
+  CODiffusion::assemble_augmentation()
+  {
+    TrilinosWrappers::SparseMatrix augmentation;
+    coupling_matrix.Tmmult(augmentation, coupling_matrix, multiplier_weights);
+    stiffness.add(1., augmentation);
+  }
+
+  void
+  CODiffusion::solve()
+  {
+    TimerOutput::Scope scope(timer, "diffusion: solve");
+    // S = diag(A_γ)^-1/2 on P, W^1/2 on λ: both rows O(1) on the diagonal.
+    TrilinosWrappers::MPI::BlockVector scale(rhs), inverse_scale(rhs);
+    for (const auto i : owned_dofs)
+      scale.block(0)[i] = 1. / std::sqrt(stiffness.diag_element(i));
+    for (const auto i : owned_multipliers)
+      scale.block(1)[i] = std::sqrt(multiplier_weights[i] / parameters.augmentation);
+    scale.compress(VectorOperation::insert);
+    for (unsigned int b = 0; b < 2; ++b)
+      for (const auto i : scale.block(b).locally_owned_elements())
+        inverse_scale.block(b)[i] = 1. / scale.block(b)[i];
+    inverse_scale.compress(VectorOperation::insert);
+
+    const SaddlePointOperator               op(stiffness, coupling_matrix);
+    const AugmentedLagrangianPreconditioner preconditioner(coupling_matrix,
+                                                           multiplier_weights,
+                                                           amg,
+                                                           rhs.block(0));
+    TrilinosWrappers::MPI::BlockVector scaled_rhs(rhs);
+    scaled_rhs.scale(scale);
+    SolverControl control(parameters.max_linear_iterations,
+                          parameters.linear_tolerance * scaled_rhs.l2_norm());
+    SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(
+      control, SolverFGMRES<TrilinosWrappers::MPI::BlockVector>::AdditionalData(100));
+    solution = 0.;
+    try
+      {
+        solver.solve(DiagonallyScaled<SaddlePointOperator>(op, scale),
+                     solution,
+                     scaled_rhs,
+                     DiagonallyScaled<AugmentedLagrangianPreconditioner>(preconditioner,
+                                                                         inverse_scale));
+      }
+    catch (const SolverControl::NoConvergence &e)
+      {
+        throw SolverFailure("CO diffusion: FGMRES did not converge in " +
+                            std::to_string(e.last_step) + " iterations (residual " +
+                            Utilities::to_string(e.last_residual) + ", wanted " +
+                            Utilities::to_string(control.tolerance()) +
+                            "). Raise Diffusion/Max linear iterations, or check "
+                            "that the membranes are resolved by the mesh.");
+      }
+    solution.scale(scale);
+    iterations = control.last_step();
+    if (!std::isfinite(solution.l2_norm()))
+      throw SolverFailure("CO diffusion: the solution is not finite.");
+    constraints.distribute(solution.block(0));
+    compute_flows();
+  }
+
+  void
+  CODiffusion::compute_flows()
+  {
+    // λ = σ λ_s: the unknown is the multiplier of the scaled rows σ B.
+    TrilinosWrappers::MPI::Vector all(owned_multipliers,
+                                      complete_index_set(multiplier_offsets.back()),
+                                      communicator);
+    all = solution.block(1);
+    multiplier_values.reinit(multiplier_offsets.back());
+    for (types::global_dof_index i = 0; i < multiplier_values.size(); ++i)
+      multiplier_values[i] = constraint_scale * all[i];
+
+    flows.assign(membranes.size(), 0.);
+    for (unsigned int m = 0; m < membranes.size(); ++m)
+      for (auto i = multiplier_offsets[m]; i < multiplier_offsets[m + 1]; ++i)
+        flows[m] += multiplier_values[i] * multiplier_mass[i];
+
+    // The flow through the alveolar surface: Σ over its DoFs j of
+    // a(P, φ_j), which equals ∫ λ because a(P, 1) = 0.
+    IndexSet relevant_dofs;
+    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
+    TrilinosWrappers::MPI::Vector P(owned_dofs, relevant_dofs, communicator);
+    P = solution.block(0);
+    const IndexSet boundary_dofs =
+      DoFTools::extract_boundary_dofs(dof_handler, ComponentMask(), {pressure_boundary});
+    const QGauss<3> quadrature(fe.degree + 1);
+    FEValues<3>     fe_values(mapping, fe, quadrature, update_gradients | update_JxW_values);
+    std::vector<Tensor<1, 3>>            gradients(quadrature.size());
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    double                               local_flow = 0.;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          cell->get_dof_indices(dofs);
+          if (std::none_of(dofs.begin(), dofs.end(), [&](const auto dof) {
+                return boundary_dofs.is_element(dof);
+              }))
+            continue;
+          fe_values.reinit(cell);
+          fe_values.get_function_gradients(P, gradients);
+          const double alpha_D = permeability(cell->material_id());
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            if (boundary_dofs.is_element(dofs[i]))
+              for (const unsigned int q : fe_values.quadrature_point_indices())
+                local_flow += alpha_D * gradients[q] * fe_values.shape_grad(i, q) * fe_values.JxW(q);
+        }
+    alveolar_flow = Utilities::MPI::sum(local_flow, communicator);
+  }
+
+  const std::vector<double> &
+  CODiffusion::membrane_flows() const
+  {
+    return flows;
+  }
+
+  double
+  CODiffusion::total_flow() const
+  {
+    return std::accumulate(flows.begin(), flows.end(), 0.);
+  }
+
+  double
+  CODiffusion::dm_total() const
+  {
+    return total_flow() / parameters.alveolar_pressure;
+  }
+
+  double
+  CODiffusion::boundary_flow() const
+  {
+    return alveolar_flow;
+  }
+
+  types::global_dof_index
+  CODiffusion::n_pressure_dofs() const
+  {
+    return dof_handler.n_dofs();
+  }
+
+  types::global_dof_index
+  CODiffusion::n_multiplier_dofs() const
+  {
+    return multiplier_offsets.back();
+  }
+
+  unsigned int
+  CODiffusion::n_iterations() const
+  {
+    return iterations;
+  }
+
+  void
+  CODiffusion::write_output(const std::string &directory, const std::string &name) const
+  {
+    TimerOutput::Scope scope(timer, "diffusion: output");
+    IndexSet           relevant_dofs;
+    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
+    TrilinosWrappers::MPI::Vector P(owned_dofs, relevant_dofs, communicator);
+    P = solution.block(0);
+
+    Vector<float> material_id(mesh->n_active_cells());
+    for (const auto &cell : mesh->active_cell_iterators())
+      material_id[cell->active_cell_index()] = cell->material_id();
+    DataOut<3> data_out;
+    data_out.attach_dof_handler(dof_handler);
+    data_out.set_flags(fast_vtk_flags());
+    data_out.add_data_vector(P, "co_pressure");
+    data_out.add_data_vector(material_id, "material_id", DataOut<3>::type_cell_data);
+    data_out.build_patches(mapping, fe.degree);
+    const std::string pvtu =
+      data_out.write_vtu_with_pvtu_record(directory + "/", name, 0, communicator, 4);
+    write_pvd(directory, name, {{0., pvtu}}, communicator);
+
+    std::vector<Vector<double>> flux(membranes.size());
+    for (unsigned int m = 0; m < membranes.size(); ++m)
+      {
+        flux[m].reinit(multiplier_dof_handlers[m]->n_dofs());
+        for (unsigned int i = 0; i < flux[m].size(); ++i)
+          flux[m][i] = multiplier_values[multiplier_offsets[m] + i];
+      }
+    const FluxVector flux_vector;
+    write_membranes(membranes,
+                    *membrane_mapping,
+                    directory,
+                    name + "_membranes",
+                    communicator,
+                    [&](const unsigned int m, DataOut<2, 3> &membrane_out) {
+                      membrane_out.add_data_vector(*multiplier_dof_handlers[m], flux[m], "co_flux");
+                      membrane_out.add_data_vector(*multiplier_dof_handlers[m], flux[m], flux_vector);
+                    });
+  }
+} // namespace rbc_ifem

@@ -2,16 +2,12 @@
 #define rbc_ifem_geometry_experiment_h
 
 #include <rbc_ifem/cell_layout.h>
-#include <rbc_ifem/cell_surface.h>
+#include <rbc_ifem/cell_membranes.h>
 #include <rbc_ifem/parameters.h>
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
 #include <deal.II/distributed/shared_tria.h>
-#include <deal.II/fe/mapping_q.h>
-
-#include <memory>
-#include <vector>
 
 namespace rbc_ifem
 {
@@ -36,29 +32,19 @@ namespace rbc_ifem
 
   private:
     void
-    create_membranes();
-    void
-    check_clearance() const;
+    report_membranes() const;
     void
     create_meshes();
     void
     write_output(const ParameterHandler &prm) const;
-
-    /// Vertices of every membrane: where the volume meshes are refined.
-    std::vector<Point<3>>
-    membrane_points() const;
-    std::vector<const Triangulation<2, 3> *>
-    membrane_pointers() const;
 
     const Parameters   parameters;
     const MPI_Comm     communicator;
     ConditionalOStream pcout;
     mutable TimerOutput timer;
 
-    const CellLayout                                  layout;
-    const MappingQ<2, 3>                              membrane_mapping;
-    std::vector<std::unique_ptr<Triangulation<2, 3>>> membranes;
-    std::vector<SurfaceMeasures>                      measures;
+    const CellLayout    layout;
+    const CellMembranes membranes;
 
     parallel::shared::Triangulation<3> fluid_mesh;
     parallel::shared::Triangulation<3> diffusion_mesh;

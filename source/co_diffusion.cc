@@ -10,6 +10,7 @@
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/grid_tools_cache.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/solver_gmres.h>
 #include <deal.II/numerics/data_out.h>
@@ -18,7 +19,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <numeric>
+#include <sstream>
 
 namespace rbc_ifem
 {
@@ -171,22 +174,36 @@ namespace rbc_ifem
 {
   namespace
   {
-    /// -λ n on a membrane: the flux vector, pointing into the cell.
+    /**
+     * -λ n on a membrane: the flux vector, pointing into the cell. DataOut
+     * gives normals to postprocessors only on faces (DataOutFaces), so they
+     * come from an FEValues at the patch points of each membrane cell.
+     */
     class FluxVector : public DataPostprocessorVector<3>
     {
     public:
-      FluxVector()
-        : DataPostprocessorVector<3>("co_flux_vector", update_values | update_normal_vectors)
+      explicit FluxVector(const Mapping<2, 3> &mapping)
+        : DataPostprocessorVector<3>("co_flux_vector", update_values | update_quadrature_points)
+        , mapping(mapping)
       {}
 
       void
       evaluate_scalar_field(const DataPostprocessorInputs::Scalar<3> &inputs,
                             std::vector<Vector<double>> &computed) const override
       {
-        for (unsigned int q = 0; q < inputs.solution_values.size(); ++q)
+        const auto cell = inputs.template get_cell<2>();
+        std::vector<Point<2>> unit_points(inputs.evaluation_points.size());
+        mapping.transform_points_real_to_unit_cell(cell, inputs.evaluation_points, unit_points);
+        FEValues<2, 3> fe_values(mapping, fe, Quadrature<2>(unit_points), update_normal_vectors);
+        fe_values.reinit(cell);
+        for (unsigned int q = 0; q < unit_points.size(); ++q)
           for (unsigned int d = 0; d < 3; ++d)
-            computed[q](d) = -inputs.solution_values[q] * inputs.normals[q][d];
+            computed[q](d) = -inputs.solution_values[q] * fe_values.normal_vector(q)[d];
       }
+
+    private:
+      const Mapping<2, 3> &mapping;
+      const FE_Q<2, 3>     fe{1};
     };
   } // namespace
 
@@ -322,7 +339,28 @@ namespace rbc_ifem
                        std::make_pair(b.membrane_cell, b.volume_cell->active_cell_index());
               });
 
+    // The multiplier space must not be finer than the volume mesh around
+    // it (the inf-sup condition of the saddle point problem): with membrane
+    // cells 1.7 times smaller FGMRES no longer converges.
     const double membrane_cell_size = std::sqrt(area / coupling->JxW.size());
+    double       volume_cell_size   = 0.;
+    coupling->for_each_run([&](const unsigned int, const auto &cell, const auto &first, const auto &last) {
+      volume_cell_size += (last - first) * cell->diameter() / std::sqrt(3.);
+    });
+    volume_cell_size /= coupling->points.size();
+    if (volume_cell_size > 1.4 * membrane_cell_size)
+      {
+        std::ostringstream sizes;
+        sizes << std::setprecision(2) << "membrane cells of " << membrane_cell_size
+              << " µm in diffusion mesh cells of " << volume_cell_size << " µm";
+        throw InputError("Cells/Surface refinements",
+                         sizes.str(),
+                         "the diffusion mesh around the membranes must be about as fine "
+                         "as the membranes or finer (the multiplier's inf-sup condition); "
+                         "raise Mesh/Diffusion band refinements or lower Cells/Surface "
+                         "refinements.");
+      }
+
     constraint_scale =
       permeability(coupling->points.front().volume_cell->material_id()) / membrane_cell_size;
   }
@@ -333,8 +371,8 @@ namespace rbc_ifem
     const types::global_dof_index n_multipliers = multiplier_offsets.back();
     const unsigned int            rank          = Utilities::MPI::this_mpi_process(communicator);
 
-    // B with every row, on every rank: its rows tell which P DoFs the
-    // augmentation Bᵀ W B couples.
+    // B with every row, on every rank: it is small, and its rows tell which
+    // P DoFs the augmentation Bᵀ W B couples.
     AffineConstraints<double> no_constraints;
     no_constraints.close();
     DynamicSparsityPattern    b_pattern(n_multipliers, dof_handler.n_dofs());
@@ -371,6 +409,8 @@ namespace rbc_ifem
     c_pattern.compress();
     stiffness.reinit(a_pattern);
     coupling_matrix.reinit(c_pattern);
+    coupling_sparsity.copy_from(b_pattern);
+    full_coupling_matrix.reinit(coupling_sparsity);
 
     solution.reinit({owned_dofs, owned_multipliers}, communicator);
     rhs.reinit({owned_dofs, owned_multipliers}, communicator);
@@ -381,9 +421,10 @@ namespace rbc_ifem
   CODiffusion::assemble()
   {
     TimerOutput::Scope scope(timer, "diffusion: assemble");
-    stiffness = 0.;
-    rhs       = 0.;
-    coupling_matrix = 0.;
+    stiffness            = 0.;
+    rhs                  = 0.;
+    coupling_matrix      = 0.;
+    full_coupling_matrix = 0.;
     assemble_stiffness();
     assemble_coupling();
     assemble_augmentation();
@@ -435,37 +476,30 @@ namespace rbc_ifem
                                const auto &       volume_cell,
                                const auto &       first,
                                const auto &       last) {
-      // Only the rows of λ this rank owns: B is stored by rows.
-      const auto &                         rows = coupling->multiplier_dofs[membrane_cell];
-      std::vector<unsigned int>            local_rows;
-      std::vector<types::global_dof_index> owned_rows;
-      for (unsigned int i = 0; i < n_mu; ++i)
-        if (owned_multipliers.is_element(rows[i]))
-          {
-            local_rows.push_back(i);
-            owned_rows.push_back(rows[i]);
-          }
-      if (owned_rows.empty())
-        return;
-
-      FullMatrix<double> local(owned_rows.size(), n_p);
+      FullMatrix<double> local(n_mu, n_p);
       for (auto point = first; point != last; ++point)
         {
-          const double dA =
-            constraint_scale * coupling->JxW[membrane_cell][point->q];
+          const double    dA = constraint_scale * coupling->JxW[membrane_cell][point->q];
           const Point<2> &xi = coupling->quadrature.point(point->q);
           for (unsigned int j = 0; j < n_p; ++j)
             {
               const double phi = fe.shape_value(j, point->reference) * dA;
-              for (unsigned int r = 0; r < local_rows.size(); ++r)
-                local(r, j) += multiplier_fe.shape_value(local_rows[r], xi) * phi;
+              for (unsigned int i = 0; i < n_mu; ++i)
+                local(i, j) += multiplier_fe.shape_value(i, xi) * phi;
             }
         }
       volume_cell->get_dof_indices(volume_dofs);
-      no_constraints.distribute_local_to_global(
-        local, owned_rows, constraints, volume_dofs, coupling_matrix);
+      no_constraints.distribute_local_to_global(local,
+                                                coupling->multiplier_dofs[membrane_cell],
+                                                constraints,
+                                                volume_dofs,
+                                                full_coupling_matrix);
     });
-    coupling_matrix.compress(VectorOperation::add);
+    // The distributed copy holds the rows this rank owns.
+    for (const auto i : owned_multipliers)
+      for (auto entry = full_coupling_matrix.begin(i); entry != full_coupling_matrix.end(i); ++entry)
+        coupling_matrix.set(i, entry->column(), entry->value());
+    coupling_matrix.compress(VectorOperation::insert);
 
     // Lumped membrane mass m_i = ∫ μ_i dA; W = diag(1 / (σ m_i)).
     multiplier_mass.reinit(multiplier_offsets.back());
@@ -484,9 +518,29 @@ namespace rbc_ifem
   void
   CODiffusion::assemble_augmentation()
   {
-    TrilinosWrappers::SparseMatrix augmentation;
-    coupling_matrix.Tmmult(augmentation, coupling_matrix, multiplier_weights);
-    stiffness.add(1., augmentation);
+    // A_γ = A + Bᵀ (γW) B, row by row of B: every pair of P DoFs in row i
+    // couples with weight γ W_i B_ij B_ik. (Trilinos' Tmmult would do this
+    // product, but crashes on more than one rank in deal.II 9.4.)
+    std::vector<types::global_dof_index> columns;
+    std::vector<double>                  values;
+    for (types::global_dof_index i = 0; i < full_coupling_matrix.m(); ++i)
+      {
+        const double weight = parameters.augmentation / (constraint_scale * multiplier_mass[i]);
+        for (auto row = full_coupling_matrix.begin(i); row != full_coupling_matrix.end(i); ++row)
+          if (owned_dofs.is_element(row->column()))
+            {
+              columns.clear();
+              values.clear();
+              for (auto entry = full_coupling_matrix.begin(i); entry != full_coupling_matrix.end(i);
+                   ++entry)
+                {
+                  columns.push_back(entry->column());
+                  values.push_back(weight * row->value() * entry->value());
+                }
+              stiffness.add(row->column(), columns.size(), columns.data(), values.data());
+            }
+      }
+    stiffness.compress(VectorOperation::add);
   }
 
   void
@@ -662,7 +716,7 @@ namespace rbc_ifem
         for (unsigned int i = 0; i < flux[m].size(); ++i)
           flux[m][i] = multiplier_values[multiplier_offsets[m] + i];
       }
-    const FluxVector flux_vector;
+    const FluxVector flux_vector(*membrane_mapping);
     write_membranes(membranes,
                     *membrane_mapping,
                     directory,

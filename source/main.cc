@@ -7,6 +7,7 @@
  *   rbc-ifem --help                 usage
  */
 
+#include <rbc_ifem/diffusion_experiment.h>
 #include <rbc_ifem/flow_experiment.h>
 #include <rbc_ifem/geometry_experiment.h>
 #include <rbc_ifem/input_error.h>
@@ -51,6 +52,9 @@ namespace
     // Patterns::Selection admits only the experiments that exist.
     if (parameters.experiment == "flow")
       FlowExperiment(parameters, communicator).run(prm);
+    else if (parameters.experiment == "diffusion" || parameters.experiment == "layouts" ||
+             parameters.experiment == "mesh convergence")
+      DiffusionExperiment(parameters, communicator).run(prm);
     else
       GeometryExperiment(parameters, communicator).run(prm);
   }

@@ -108,10 +108,12 @@ namespace rbc_ifem
                       "Global refinements of the coarse lumen + wall + gas "
                       "mesh (CO diffusion).");
     prm.declare_entry("Diffusion band refinements",
-                      "1",
-                      Patterns::Integer(0, 4),
+                      "3",
+                      Patterns::Integer(0, 5),
                       "Further refinements of the diffusion mesh in a band "
-                      "around the cell membranes.");
+                      "around the cell membranes. The mesh there must be about "
+                      "as fine as the membranes (Cells/Surface refinements "
+                      "one higher than this, with 1 global refinement).");
     prm.declare_entry("Band width",
                       "0.5",
                       Patterns::Double(0.),
@@ -144,7 +146,7 @@ namespace rbc_ifem
                       "shape [µm]; its thickness scales with it. Must be "
                       "smaller than the capillary diameter.");
     prm.declare_entry("Surface refinements",
-                      "3",
+                      "4",
                       Patterns::Integer(0, 7),
                       "Global refinements of each membrane surface mesh; the "
                       "coarse mesh has 6 quadrilaterals, each refinement "
@@ -383,7 +385,7 @@ namespace rbc_ifem
                       "Degree k of the continuous FE_Q<3>(k) for P (the mapping "
                       "has the same degree).");
     prm.declare_entry("Augmentation",
-                      "10",
+                      "30",
                       Patterns::Double(0.),
                       "Augmented-Lagrangian weight γ (dimensionless) of the "
                       "membrane constraint. It does not change the solution, "

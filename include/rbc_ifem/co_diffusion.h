@@ -10,6 +10,8 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/trilinos_block_sparse_matrix.h>
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
 #include <deal.II/lac/trilinos_precondition.h>
@@ -171,6 +173,8 @@ namespace rbc_ifem
 
     TrilinosWrappers::SparseMatrix    stiffness;    ///< A + γ Bᵀ W B
     TrilinosWrappers::SparseMatrix    coupling_matrix; ///< B, λ rows × P columns
+    SparsityPattern                   coupling_sparsity;
+    SparseMatrix<double>              full_coupling_matrix; ///< all of B, every rank
     TrilinosWrappers::MPI::Vector     multiplier_weights; ///< γ W
     TrilinosWrappers::PreconditionAMG amg;
     TrilinosWrappers::MPI::BlockVector solution;

@@ -39,7 +39,7 @@ namespace rbc_ifem
     unsigned int fluid_global_refinements     = 1;
     unsigned int fluid_band_refinements       = 1;
     unsigned int diffusion_global_refinements = 1;
-    unsigned int diffusion_band_refinements   = 1;
+    unsigned int diffusion_band_refinements   = 3;
     double       band_width                   = 0.5; ///< [µm]
 
     static void
@@ -52,7 +52,7 @@ namespace rbc_ifem
   struct CellParameters
   {
     double         diameter            = 7.5; ///< Evans-Fung diameter 2R [µm]
-    unsigned int   surface_refinements = 3;
+    unsigned int   surface_refinements = 4;
     Tensor<1, 3>   axis{{1., 0., 0.}}; ///< symmetry axis, unit length
 
     static void
@@ -127,7 +127,7 @@ namespace rbc_ifem
     double       gas_diffusivity      = 2.413e7;   ///< D [µm²/s]
     double       gas_solubility       = 1.159e-3;  ///< α [Torr⁻¹]
     unsigned int degree               = 1;         ///< of FE_Q<3> for P
-    double       augmentation         = 10.;       ///< γ, dimensionless
+    double       augmentation         = 30.;       ///< γ, dimensionless
     double       linear_tolerance     = 1e-8;      ///< relative, FGMRES
     unsigned int max_linear_iterations = 1000;
 

@@ -12,7 +12,7 @@ import sys
 
 import vtk
 
-from vtk_picture import read, save_png
+from vtk_picture import point_camera, read, save_png
 
 
 def last_field(directory):
@@ -94,8 +94,9 @@ def main(directory, picture):
     renderer.AddActor(plane_actor)
     renderer.AddActor(arrow_actor)
     renderer.AddActor2D(bar)
-    save_png(renderer, picture, focal_point=(10, 0, 0), position=(10, 0, 50),
-             view_up=(0, 1, 0), zoom=1.3, size=(1200, 600))
+    point_camera(renderer, focal_point=(10, 0, 0), position=(10, 0, 50),
+             view_up=(0, 1, 0), zoom=1.3)
+    save_png([renderer], picture, size=(1200, 600))
 
 if __name__ == "__main__":
     if len(sys.argv) != 3:

@@ -12,7 +12,7 @@ import sys
 
 import vtk
 
-from vtk_picture import read, save_png
+from vtk_picture import point_camera, read, save_png
 
 
 def outer_surface(algorithm_or_data):
@@ -81,8 +81,9 @@ def main(directory, picture):
     lumen.GetProperty().SetOpacity(0.25)
     renderer.AddActor(lumen)
 
-    save_png(renderer, picture, focal_point=(10, 0, 0), position=(-14, -30, 13),
-             view_up=(0, 0, 1), zoom=1.5, size=(1200, 700))
+    point_camera(renderer, focal_point=(10, 0, 0), position=(-14, -30, 13),
+             view_up=(0, 0, 1), zoom=1.5)
+    save_png([renderer], picture, size=(1200, 700))
 
 if __name__ == "__main__":
     if len(sys.argv) != 3:

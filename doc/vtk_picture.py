@@ -12,8 +12,8 @@ def read(path):
     return reader.GetOutput()
 
 
-def save_png(renderer, picture, focal_point, position, view_up, zoom, size):
-    """Point the camera, render off a virtual display and write PICTURE."""
+def point_camera(renderer, focal_point, position, view_up, zoom):
+    """Look from POSITION at FOCAL_POINT, fit the scene, then zoom."""
     camera = renderer.GetActiveCamera()
     camera.SetFocalPoint(*focal_point)
     camera.SetPosition(*position)
@@ -21,8 +21,13 @@ def save_png(renderer, picture, focal_point, position, view_up, zoom, size):
     renderer.ResetCamera()
     camera.Zoom(zoom)
 
+
+def save_png(renderers, picture, size):
+    """Render RENDERERS (one window, each in its viewport) off a virtual
+    display and write PICTURE."""
     window = vtk.vtkRenderWindow()
-    window.AddRenderer(renderer)
+    for renderer in renderers:
+        window.AddRenderer(renderer)
     window.SetSize(*size)
     window.Render()
     image = vtk.vtkWindowToImageFilter()

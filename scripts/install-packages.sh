@@ -2,12 +2,12 @@
 # Install the Debian 12 packages rbc-ifem needs: deal.II 9.4 (with MPI,
 # Trilinos, PETSc, METIS, ...), a compiler, CMake, MPI launchers and numdiff
 # for the tests. With --docs also what renders the documentation's figures
-# (python3-vtk9 and a virtual X server). Uses sudo when not run as root.
+# (python3-vtk9, python3-matplotlib and a virtual X server). Uses sudo when not run as root.
 set -euo pipefail
 
 packages=(libdeal.ii-dev g++ cmake make openmpi-bin numdiff)
 if [ "${1:-}" = "--docs" ]; then
-  packages+=(python3-vtk9 xvfb xauth)
+  packages+=(python3-vtk9 python3-matplotlib xvfb xauth)
 fi
 
 installed=$(dpkg-query -W -f='${Status}\n' "${packages[@]}" 2>/dev/null | grep -c "install ok installed" || true)

@@ -311,6 +311,7 @@ namespace rbc_ifem
     if (points.empty())
       return;
 
+    TimerOutput::Scope        scope(timer, "diffusion: point location");
     const GridTools::Cache<3> cache(*mesh, mapping);
     const auto [cells, reference_points, point_indices, missing] =
       GridTools::compute_point_locations_try_all(cache, points);
@@ -429,6 +430,7 @@ namespace rbc_ifem
     assemble_coupling();
     assemble_augmentation();
 
+    TimerOutput::Scope                                amg_scope(timer, "diffusion: AMG setup");
     TrilinosWrappers::PreconditionAMG::AdditionalData amg_data;
     amg_data.elliptic              = true;
     amg_data.higher_order_elements = fe.degree > 1;

@@ -112,8 +112,10 @@ namespace rbc_ifem
                       Patterns::Integer(0, 5),
                       "Further refinements of the diffusion mesh in a band "
                       "around the cell membranes. The mesh there must be about "
-                      "as fine as the membranes (Cells/Surface refinements "
-                      "one higher than this, with 1 global refinement).");
+                      "as fine as the membranes or finer; CO fluxes are "
+                      "smoothest with membrane cells about twice the size of "
+                      "the mesh cells (with 1 global refinement: band "
+                      "refinements = Cells/Surface refinements).");
     prm.declare_entry("Band width",
                       "0.5",
                       Patterns::Double(0.),
@@ -146,7 +148,7 @@ namespace rbc_ifem
                       "shape [µm]; its thickness scales with it. Must be "
                       "smaller than the capillary diameter.");
     prm.declare_entry("Surface refinements",
-                      "4",
+                      "3",
                       Patterns::Integer(0, 7),
                       "Global refinements of each membrane surface mesh; the "
                       "coarse mesh has 6 quadrilaterals, each refinement "

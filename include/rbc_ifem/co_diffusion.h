@@ -41,8 +41,8 @@ namespace rbc_ifem
    *   (μ, P)_Γ               = 0    for all μ.
    *
    * λ is the jump of αD ∂P/∂n across the membrane (n out of the cell): the
-   * CO flux density into the cell [µm/s, per Torr of P_A × P_A], so the flux
-   * map and DM come out of the solve. Inside a cell P ≈ 0; what little
+   * CO flux density into the cell [µm³ of CO per µm² and s], so the flux map
+   * and DM come out of the solve. Inside a cell P ≈ 0; what little
    * gradient the discrete field keeps there tends to zero with the mesh
    * size, which the analytic checks in tests/ measure.
    *
@@ -90,11 +90,14 @@ namespace rbc_ifem
     void
     solve();
 
-    /// CO flow into each membrane, ∫_Γi λ dA [µm³/s at P in Torr × Torr⁻¹ ...].
+    /**
+     * CO flow into each membrane, ∫_Γi λ dA [µm³ s⁻¹, volume of CO at
+     * STPD]: αD is in µm²/(s Torr) and P in Torr.
+     */
     const std::vector<double> &
     membrane_flows() const;
 
-    /// Total CO flow into all membranes [µm³ s⁻¹ (Torr⁻¹ per αD units) × P_A].
+    /// Total CO flow into all membranes [µm³ s⁻¹].
     double
     total_flow() const;
 

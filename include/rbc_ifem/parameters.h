@@ -52,7 +52,7 @@ namespace rbc_ifem
   struct CellParameters
   {
     double         diameter            = 7.5; ///< Evans-Fung diameter 2R [µm]
-    unsigned int   surface_refinements = 4;
+    unsigned int   surface_refinements = 3;
     Tensor<1, 3>   axis{{1., 0., 0.}}; ///< symmetry axis, unit length
 
     static void

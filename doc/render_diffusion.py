@@ -12,34 +12,7 @@ import sys
 
 import vtk
 
-from vtk_picture import point_camera, read, save_png
-
-
-def coloured(source, field, value_range, lookup):
-    """An actor showing SOURCE (an algorithm output port) coloured by FIELD."""
-    mapper = vtk.vtkDataSetMapper()
-    mapper.SetInputConnection(source)
-    mapper.SetScalarModeToUsePointFieldData()
-    mapper.SelectColorArray(field)
-    mapper.SetScalarRange(*value_range)
-    mapper.SetLookupTable(lookup)
-    actor = vtk.vtkActor()
-    actor.SetMapper(mapper)
-    return actor
-
-
-def scalar_bar(lookup, title):
-    bar = vtk.vtkScalarBarActor()
-    bar.SetLookupTable(lookup)
-    bar.SetTitle(title)
-    bar.SetNumberOfLabels(5)
-    bar.SetOrientationToHorizontal()
-    bar.SetPosition(0.15, 0.03)
-    bar.SetWidth(0.7)
-    bar.SetHeight(0.12)
-    for text in (bar.GetTitleTextProperty(), bar.GetLabelTextProperty()):
-        text.SetColor(0, 0, 0)
-    return bar
+from vtk_picture import actor, outer_surface, point_camera, read, save_png, scalar_bar
 
 
 def main(directory, picture):
@@ -74,14 +47,14 @@ def main(directory, picture):
     left = vtk.vtkRenderer()
     left.SetViewport(0, 0, 0.5, 1)
     left.SetBackground(1, 1, 1)
-    left.AddActor(coloured(cut.GetOutputPort(), "co_pressure", pressure_range, rainbow))
+    left.AddActor(actor(cut, "co_pressure", pressure_range, rainbow))
     left.AddActor(outline_actor)
     left.AddActor2D(scalar_bar(rainbow, "CO partial pressure P [Torr]"))
 
     right = vtk.vtkRenderer()
     right.SetViewport(0.5, 0, 1, 1)
     right.SetBackground(1, 1, 1)
-    right.AddActor(coloured(membrane_source.GetOutputPort(), "co_flux", flux_range, rainbow))
+    right.AddActor(actor(outer_surface(membranes), "co_flux", flux_range, rainbow))
     right.AddActor2D(scalar_bar(rainbow, "CO flux density into the cell [µm/s] at P_A = 1 Torr"))
 
     point_camera(left, focal_point=(10, 0, 0), position=(10, 0, 60), view_up=(0, 1, 0), zoom=1.25)

@@ -12,7 +12,7 @@ import sys
 
 import vtk
 
-from vtk_picture import point_camera, read, save_png
+from vtk_picture import point_camera, read, save_png, scalar_bar
 
 
 def last_field(directory):
@@ -78,22 +78,11 @@ def main(directory, picture):
     arrow_actor.SetMapper(arrow_mapper)
     arrow_actor.GetProperty().SetColor(0, 0, 0)
 
-    bar = vtk.vtkScalarBarActor()
-    bar.SetLookupTable(colours)
-    bar.SetTitle("axial velocity [µm/s]")
-    bar.SetNumberOfLabels(5)
-    bar.SetOrientationToHorizontal()
-    bar.SetPosition(0.25, 0.04)
-    bar.SetWidth(0.5)
-    bar.SetHeight(0.12)
-    for text in (bar.GetTitleTextProperty(), bar.GetLabelTextProperty()):
-        text.SetColor(0, 0, 0)
-
     renderer = vtk.vtkRenderer()
     renderer.SetBackground(1, 1, 1)
     renderer.AddActor(plane_actor)
     renderer.AddActor(arrow_actor)
-    renderer.AddActor2D(bar)
+    renderer.AddActor2D(scalar_bar(colours, "axial velocity [µm/s]", left=0.25, width=0.5))
     point_camera(renderer, focal_point=(10, 0, 0), position=(10, 0, 50),
              view_up=(0, 1, 0), zoom=1.3)
     save_png([renderer], picture, size=(1200, 600))

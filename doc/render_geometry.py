@@ -12,33 +12,7 @@ import sys
 
 import vtk
 
-from vtk_picture import point_camera, read, save_png
-
-
-def outer_surface(algorithm_or_data):
-    surface = vtk.vtkDataSetSurfaceFilter()
-    if isinstance(algorithm_or_data, vtk.vtkAlgorithm):
-        surface.SetInputConnection(algorithm_or_data.GetOutputPort())
-    else:
-        surface.SetInputData(algorithm_or_data)
-    return surface
-
-
-def actor(surface, array=None, value_range=None, lookup_table=None):
-    """An actor for a surface, coloured by a point array if one is named
-    (deal.II writes every field, cell data too, as point data)."""
-    mapper = vtk.vtkPolyDataMapper()
-    mapper.SetInputConnection(surface.GetOutputPort())
-    if array is None:
-        mapper.ScalarVisibilityOff()
-    else:
-        mapper.SetScalarModeToUsePointFieldData()
-        mapper.SelectColorArray(array)
-        mapper.SetScalarRange(*value_range)
-        mapper.SetLookupTable(lookup_table)
-    result = vtk.vtkActor()
-    result.SetMapper(mapper)
-    return result
+from vtk_picture import actor, outer_surface, point_camera, read, save_png
 
 
 def main(directory, picture):

@@ -1,5 +1,7 @@
 #include <rbc_ifem/evans_fung.h>
 
+#include <deal.II/base/quadrature_lib.h>
+
 #include <cmath>
 #include <vector>
 
@@ -182,5 +184,45 @@ namespace rbc_ifem
     const Point<3> s1 = pull_back(x1);
     return rotation * (shape.from_sphere_gradient(s1) *
                        sphere.get_tangent_vector(s1, pull_back(x2)));
+  }
+  namespace
+  {
+    /// ∫ over t in [-1, 1] of f(t, r², z'(t)) for the profile of @p R.
+    template <typename Integrand>
+    double
+    integrate_profile(const double R, const Integrand &f)
+    {
+      const double a0 = EvansFungShape::a0, a1 = EvansFungShape::a1, a2 = EvansFungShape::a2;
+      const auto   z_prime = [&](const double t) {
+        const double u = 1. - t * t;
+        return 0.5 * R * (a0 + a1 * u + a2 * u * u + t * (-2. * t * a1 - 4. * t * a2 * u));
+      };
+      const QGauss<1> gauss(60);
+      double          sum = 0.;
+      for (unsigned int q = 0; q < gauss.size(); ++q)
+        for (const double sign : {-1., 1.})
+          {
+            const double t = sign * gauss.point(q)[0];
+            sum += f(t, R * R * (1. - t * t), z_prime(t)) * gauss.weight(q);
+          }
+      return sum;
+    }
+  } // namespace
+
+  double
+  EvansFungShape::exact_area() const
+  {
+    const double R = radius();
+    return integrate_profile(R, [R](const double t, const double r2, const double zp) {
+      return 2. * numbers::PI * std::sqrt(R * R * R * R * t * t + r2 * zp * zp);
+    });
+  }
+
+  double
+  EvansFungShape::exact_volume() const
+  {
+    return integrate_profile(radius(), [](const double, const double r2, const double zp) {
+      return numbers::PI * r2 * zp;
+    });
   }
 } // namespace rbc_ifem

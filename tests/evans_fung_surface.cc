@@ -1,6 +1,6 @@
 // The Evans-Fung membrane mesh: its vertices lie on the exact shape, and its
-// area and enclosed volume converge to the exact values, computed here by
-// 1-D Gauss quadrature of the profile z(r) of design.md. Prints the errors
+// area and enclosed volume converge to the exact values (EvansFungShape::
+// exact_area(), exact_volume(): 1-D Gauss quadrature of the profile z(r)). Prints the errors
 // and the observed convergence orders for the linear mapping and for the
 // quadratic one the program uses.
 
@@ -14,18 +14,6 @@ using namespace rbc_ifem;
 
 namespace
 {
-  struct Exact
-  {
-    double area, volume;
-  };
-
-  /**
-   * The profile as a curve in t = cos(polar angle) in [-1, 1]:
-   * r(t) = R sqrt(1 - t²), z(t) = ±0.5 R sqrt(1 - ρ²)(a0 + a1 ρ² + a2 ρ⁴) with
-   * sqrt(1 - ρ²) = |t|. Then A = ∫ 2π r |(r', z')| dt, where r |(r', z')| =
-   * sqrt(R⁴ t² + r² z'²) is smooth, and V = ∫ π r² z' dt (signed, so the
-   * dimples count correctly).
-   */
   /// An observed order for the table, "-" where there is none yet.
   std::string
   order_text(const double order)
@@ -37,28 +25,6 @@ namespace
     return s.str();
   }
 
-  Exact
-  exact_measures(const double R)
-  {
-    const double a0 = 0.207, a1 = 2.002, a2 = -1.123;
-    const auto   z_prime = [&](const double t) {
-      const double u = 1. - t * t;
-      return 0.5 * R * (a0 + a1 * u + a2 * u * u + t * (-2. * t * a1 - 4. * t * a2 * u));
-    };
-    const QGauss<1> gauss(60);
-    Exact           exact{0., 0.};
-    for (unsigned int q = 0; q < gauss.size(); ++q)
-      for (const double sign : {-1., 1.})
-        {
-          const double t  = sign * gauss.point(q)[0];
-          const double w  = gauss.weight(q);
-          const double r2 = R * R * (1. - t * t);
-          const double zp = z_prime(t);
-          exact.area += 2. * numbers::PI * std::sqrt(R * R * R * R * t * t + r2 * zp * zp) * w;
-          exact.volume += numbers::PI * r2 * zp * w;
-        }
-    return exact;
-  }
 } // namespace
 
 int
@@ -68,7 +34,10 @@ main()
   const double         diameter = 7.5;
   const EvansFungShape shape(diameter);
   const CellPlacement  placement{Point<3>(1., -0.5, 2.), Tensor<1, 3>({1., 1., 0.})};
-  const Exact          exact = exact_measures(diameter / 2.);
+  const struct
+  {
+    double area, volume;
+  } exact{shape.exact_area(), shape.exact_volume()};
 
   std::cout << std::setprecision(10) << "exact area " << exact.area
             << " µm², exact volume " << exact.volume << " µm³\n";

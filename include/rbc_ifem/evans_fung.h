@@ -57,6 +57,18 @@ namespace rbc_ifem
     to_sphere(const Point<3> &x) const;
 
     /**
+     * The exact area [µm²] and enclosed volume [µm³] of the shape, by 1-D
+     * Gauss quadrature of the profile (to round-off): as a curve in
+     * t = cos(polar angle), r(t) = R sqrt(1 - t²) and z(t) = 0.5 R t g(t),
+     * A = ∫ 2π r |(r', z')| dt, with r |(r', z')| = sqrt(R⁴t² + r²z'²)
+     * smooth, and V = ∫ π r² z' dt (signed, so the dimples count).
+     */
+    double
+    exact_area() const;
+    double
+    exact_volume() const;
+
+    /**
      * The largest extent of a cell with the given @p placement along
      * @p direction, measured from its centre (the support function of the
      * shape), found by a search over the parametrisation to round-off.

@@ -351,6 +351,89 @@ namespace rbc_ifem
   }
 
   void
+  MembraneParameters::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Membrane");
+    prm.declare_entry("Elastic law",
+                      "neo-Hookean",
+                      Patterns::Selection("neo-Hookean|Skalak"),
+                      "In-plane hyperelastic law, in the principal stretches "
+                      "λ1, λ2 of the surface deformation. neo-Hookean (the "
+                      "paper's): W = C1 (λ1² + λ2² + 1/(λ1λ2)² - 3) + C2/2 "
+                      "(λ1λ2 - 1)², C1 = G/2, C2 = K - 3G. Skalak: W = G/4 "
+                      "(I1² + 2 I1 - 2 I2 + C I2²), I1 = λ1² + λ2² - 2, I2 = "
+                      "(λ1λ2)² - 1, C = (K/G - 1)/2.");
+    prm.declare_entry("Shear modulus",
+                      "5.5",
+                      Patterns::Double(0.),
+                      "In-plane shear modulus G [pN/µm]; 5.5 pN/µm is the "
+                      "value optical-tweezers experiments give (Mills et al. "
+                      "2004: 5.3-7.3).");
+    prm.declare_entry("Area dilation modulus",
+                      "500",
+                      Patterns::Double(0.),
+                      "Local area dilation modulus K [pN/µm] (small-strain "
+                      "tension per relative area change). The real membrane's "
+                      "is ~3e5 pN/µm; 500 keeps local area changes below ~2% "
+                      "at 200 pN while the solver stays fast. Must be > 3G "
+                      "for the neo-Hookean law.");
+    prm.declare_entry("Bending modulus",
+                      "0.2",
+                      Patterns::Double(0.),
+                      "Helfrich bending modulus κ [pN µm]; 0.2 pN µm is "
+                      "2e-19 J.");
+    prm.declare_entry("Spontaneous curvature",
+                      "0",
+                      Patterns::Double(),
+                      "Spontaneous (total) curvature c0 of the Helfrich energy "
+                      "κ/2 ∫ (2H - c0)² dA [1/µm]; 2H = 2/R on a sphere of "
+                      "radius R with outward normals.");
+    prm.declare_entry("Area penalty",
+                      "500",
+                      Patterns::Double(0.),
+                      "k_A of the global area energy k_A/2 (A - A0)²/A0 "
+                      "[pN/µm].");
+    prm.declare_entry("Volume penalty",
+                      "500",
+                      Patterns::Double(0.),
+                      "k_V of the global volume energy k_V/2 (V - V0)²/V0 "
+                      "[pN/µm²].");
+    prm.declare_entry("Finite element degree",
+                      "1",
+                      Patterns::Integer(1, 2),
+                      "Degree k of the membrane's FESystem<2,3>(FE_Q<2,3>(k), "
+                      "3) position field.");
+    prm.leave_subsection();
+  }
+
+  void
+  MembraneParameters::parse(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Membrane");
+    law                   = prm.get("Elastic law");
+    shear_modulus         = prm.get_double("Shear modulus");
+    area_dilation_modulus = prm.get_double("Area dilation modulus");
+    bending_modulus       = prm.get_double("Bending modulus");
+    spontaneous_curvature = prm.get_double("Spontaneous curvature");
+    area_penalty          = prm.get_double("Area penalty");
+    volume_penalty        = prm.get_double("Volume penalty");
+    degree                = prm.get_integer("Finite element degree");
+    prm.leave_subsection();
+    if (!(shear_modulus > 0.))
+      throw InputError("Membrane/Shear modulus", to_string(shear_modulus), "it must be > 0 pN/µm.");
+    if (law == "neo-Hookean" && !(area_dilation_modulus > 3. * shear_modulus))
+      throw InputError("Membrane/Area dilation modulus",
+                       to_string(area_dilation_modulus),
+                       "the neo-Hookean law needs K > 3 G = " + to_string(3. * shear_modulus) +
+                         " pN/µm (its C2 = K - 3G).");
+    if (law == "Skalak" && !(area_dilation_modulus > shear_modulus))
+      throw InputError("Membrane/Area dilation modulus",
+                       to_string(area_dilation_modulus),
+                       "the Skalak law needs K > G = " + to_string(shear_modulus) +
+                         " pN/µm (its C = (K/G - 1)/2 > 0).");
+  }
+
+  void
   DiffusionParameters::declare(ParameterHandler &prm)
   {
     prm.enter_subsection("Diffusion");
@@ -535,6 +618,7 @@ namespace rbc_ifem
     LayoutParameters::declare(prm);
     FluidParameters::declare(prm);
     TimeParameters::declare(prm);
+    MembraneParameters::declare(prm);
     DiffusionParameters::declare(prm);
     LayoutStudyParameters::declare(prm);
     MeshConvergenceParameters::declare(prm);
@@ -557,6 +641,7 @@ namespace rbc_ifem
     layout.parse(prm);
     fluid.parse(prm);
     time.parse(prm);
+    membrane.parse(prm);
     diffusion.parse(prm);
     layout_study.parse(prm);
     mesh_convergence.parse(prm);

@@ -112,6 +112,27 @@ namespace rbc_ifem
   };
 
   /**
+   * The red cell membrane's mechanics (subsection "Membrane"): energies and
+   * moduli in pN and µm. See Membrane and doc/membrane.md.
+   */
+  struct MembraneParameters
+  {
+    std::string  law                   = "neo-Hookean"; ///< neo-Hookean | Skalak
+    double       shear_modulus         = 5.5;   ///< G_s [pN/µm]
+    double       area_dilation_modulus = 500.;  ///< K [pN/µm]
+    double       bending_modulus       = 0.2;   ///< κ [pN µm]
+    double       spontaneous_curvature = 0.;    ///< c0 [1/µm]
+    double       area_penalty          = 500.;  ///< k_A [pN/µm]
+    double       volume_penalty        = 500.;  ///< k_V [pN/µm²]
+    unsigned int degree                = 1;     ///< of FE_Q<2,3>
+
+    static void
+    declare(ParameterHandler &prm);
+    void
+    parse(ParameterHandler &prm);
+  };
+
+  /**
    * Steady CO diffusion (subsection "Diffusion"): ∇·(αD∇P) = 0 with αD
    * piecewise constant per material, P = P_A on the alveolar surface and
    * P = 0 on every membrane (imposed by a Lagrange multiplier, see
@@ -179,6 +200,7 @@ namespace rbc_ifem
     LayoutParameters   layout;
     FluidParameters    fluid;
     TimeParameters     time;
+    MembraneParameters        membrane;
     DiffusionParameters       diffusion;
     LayoutStudyParameters     layout_study;
     MeshConvergenceParameters mesh_convergence;

@@ -13,6 +13,7 @@
 #include <rbc_ifem/input_error.h>
 #include <rbc_ifem/parameters.h>
 #include <rbc_ifem/solver_failure.h>
+#include <rbc_ifem/stretching_experiment.h>
 
 #include <deal.II/base/mpi.h>
 
@@ -55,6 +56,8 @@ namespace
     else if (parameters.experiment == "diffusion" || parameters.experiment == "layouts" ||
              parameters.experiment == "mesh convergence")
       DiffusionExperiment(parameters, communicator).run(prm);
+    else if (parameters.experiment == "stretching")
+      StretchingExperiment(parameters, communicator).run(prm);
     else
       GeometryExperiment(parameters, communicator).run(prm);
   }

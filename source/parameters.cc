@@ -434,6 +434,58 @@ namespace rbc_ifem
   }
 
   void
+  StretchingParameters::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Stretching");
+    prm.declare_entry("Maximum force",
+                      "200",
+                      Patterns::Double(0.),
+                      "Experiment 'stretching': the largest total force F "
+                      "each bead pulls with [pN].");
+    prm.declare_entry("Number of force steps",
+                      "8",
+                      Patterns::Integer(1),
+                      "Equilibria at F = 0 and at this many equal steps up to "
+                      "the maximum force.");
+    prm.declare_entry("Attached area fraction",
+                      "0.025",
+                      Patterns::Double(0., 0.25),
+                      "Fraction of the membrane area each bead holds, at the "
+                      "two ends of a diameter. 0.025 is a contact region about "
+                      "2 µm across, as Dao et al. (2003) assume for the beads "
+                      "of the experiments.");
+    prm.declare_entry("Residual tolerance",
+                      "1e-3",
+                      Patterns::Double(0.),
+                      "An equilibrium is found when no node's force "
+                      "imbalance exceeds this [pN].");
+    prm.declare_entry("Max iterations",
+                      "20000",
+                      Patterns::Integer(1),
+                      "L-BFGS iterations allowed per force step before the "
+                      "run stops.");
+    prm.leave_subsection();
+  }
+
+  void
+  StretchingParameters::parse(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Stretching");
+    max_force         = prm.get_double("Maximum force");
+    n_force_steps     = prm.get_integer("Number of force steps");
+    attached_fraction = prm.get_double("Attached area fraction");
+    tolerance         = prm.get_double("Residual tolerance");
+    max_iterations    = prm.get_integer("Max iterations");
+    prm.leave_subsection();
+    if (!(attached_fraction > 0.))
+      throw InputError("Stretching/Attached area fraction",
+                       to_string(attached_fraction),
+                       "it must be > 0: the beads must hold some membrane.");
+    if (!(tolerance > 0.))
+      throw InputError("Stretching/Residual tolerance", to_string(tolerance), "it must be > 0 pN.");
+  }
+
+  void
   DiffusionParameters::declare(ParameterHandler &prm)
   {
     prm.enter_subsection("Diffusion");
@@ -598,7 +650,7 @@ namespace rbc_ifem
   {
     prm.declare_entry("Experiment",
                       "geometry",
-                      Patterns::Selection("geometry|diffusion|layouts|mesh convergence|flow"),
+                      Patterns::Selection("geometry|diffusion|layouts|mesh convergence|flow|stretching"),
                       "What to run. geometry: build the fluid and diffusion "
                       "meshes and the cell layout, and write them out. "
                       "diffusion: steady CO uptake of the layout (dm.csv, "
@@ -607,7 +659,10 @@ namespace rbc_ifem
                       "study (layouts.csv). mesh convergence: DM of the "
                       "layout on successively finer meshes (convergence.csv). "
                       "flow: the plasma flow in the capillary without cells, "
-                      "for Time/Number of steps (flow.csv, VTU of v and p).");
+                      "for Time/Number of steps (flow.csv, VTU of v and p). "
+                      "stretching: one cell pulled by two beads with forces "
+                      "up to Stretching/Maximum force (stretch.csv, VTU of "
+                      "each equilibrium).");
     prm.declare_entry("Output directory",
                       "output/run",
                       Patterns::DirectoryName(),
@@ -619,6 +674,7 @@ namespace rbc_ifem
     FluidParameters::declare(prm);
     TimeParameters::declare(prm);
     MembraneParameters::declare(prm);
+    StretchingParameters::declare(prm);
     DiffusionParameters::declare(prm);
     LayoutStudyParameters::declare(prm);
     MeshConvergenceParameters::declare(prm);
@@ -642,6 +698,7 @@ namespace rbc_ifem
     fluid.parse(prm);
     time.parse(prm);
     membrane.parse(prm);
+    stretching.parse(prm);
     diffusion.parse(prm);
     layout_study.parse(prm);
     mesh_convergence.parse(prm);

@@ -10,10 +10,13 @@
 // - a flat patch in homogeneous uniaxial stretch: energy W A0 and edge force
 //   against the closed form of each law;
 // - the area and volume of the Evans-Fung membrane converge to the exact
-//   values.
+//   values;
+// - under a uniform pressure p the volume energy holds the volume loss to
+//   p/k_V, the value it alone would allow.
 
 #include <rbc_ifem/cell_surface.h>
 #include <rbc_ifem/membrane.h>
+#include <rbc_ifem/membrane_equilibrium.h>
 
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/manifold_lib.h>
@@ -310,6 +313,47 @@ namespace
     check.at_most("Q" + std::to_string(degree) + " cell, 4 refinements: relative area error", area_error, bound);
     check.at_most("Q" + std::to_string(degree) + " cell, 4 refinements: relative volume error", volume_error, bound);
   }
+
+  /**
+   * A uniform inward pressure p on the cell, as dead nodal forces -p w_i
+   * (w_i the nodal vector areas of the reference, the volume's gradient):
+   * near the reference its work is -p ΔV, so the volume energy alone would
+   * stop the loss at ΔV/V0 = -p/k_V, and the elasticity only adds
+   * resistance. Without the volume energy the cell loses far more.
+   */
+  void
+  check_volume_penalty_under_pressure(Checker &check)
+  {
+    Triangulation<2, 3> surface;
+    create_cell(surface, 2);
+    const double pressure = 2.; // [pN/µm²]
+    double       loss_with_penalty = 0.;
+    for (const double k_V : {500., 0.})
+      {
+        MembraneParameters p = with_terms("Skalak", true, true, true);
+        p.volume_penalty     = k_V;
+        const Membrane membrane(surface, p);
+        Vector<double> x(membrane.reference_positions()), load(x.size());
+        const auto     w = membrane.nodal_vector_areas(x);
+        for (unsigned int i = 0; i < w.size(); ++i)
+          for (unsigned int d = 0; d < 3; ++d)
+            load[membrane.nodes()[i][d]] = -pressure * w[i][d];
+        const EquilibriumReport report = find_equilibrium(membrane, load, x, 1e-6, 20000);
+        const double loss = 1. - membrane.volume(x) / membrane.reference_volume();
+        std::cout << "Cell under " << pressure << " pN/µm², k_V = " << k_V << ": "
+                  << report.iterations << " L-BFGS iterations, volume loss " << loss
+                  << " V0, area change " << membrane.area(x) / membrane.reference_area() - 1.
+                  << " A0\n";
+        if (k_V > 0.)
+          {
+            loss_with_penalty = loss;
+            check.at_most("volume loss / (p/k_V) with the volume energy", loss / (pressure / k_V), 1.);
+            check.at_least("volume loss / (p/k_V) with the volume energy", loss / (pressure / k_V), 0.9);
+          }
+        else
+          check.at_least("volume loss without / with the volume energy", loss / loss_with_penalty, 3.);
+      }
+  }
 } // namespace
 
 int
@@ -329,5 +373,6 @@ main()
       check_uniaxial_stretch(check, law, degree);
   for (const unsigned int degree : {1u, 2u})
     check_cell_measures(check, degree);
+  check_volume_penalty_under_pressure(check);
   return check.exit_code();
 }

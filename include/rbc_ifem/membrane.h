@@ -85,6 +85,18 @@ namespace rbc_ifem
     MembraneEnergy
     energy_and_forces(const Vector<double> &x, Vector<double> &forces) const;
 
+    /// The lumped area m_i = ∫ N_i dA of every node (nodes()) on the surface x.
+    std::vector<double>
+    nodal_areas(const Vector<double> &x) const;
+
+    /**
+     * The vector area w_i = ∫ N_i n dA of every node (nodes()) on the
+     * surface x: the derivative of the enclosed volume by the node's
+     * position, so -p w_i are the nodal forces of a pressure p.
+     */
+    std::vector<Tensor<1, 3>>
+    nodal_vector_areas(const Vector<double> &x) const;
+
     /// Area [µm²] and enclosed volume [µm³] of the surface x.
     double
     area(const Vector<double> &x) const;

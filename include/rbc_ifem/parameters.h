@@ -132,6 +132,21 @@ namespace rbc_ifem
     parse(ParameterHandler &prm);
   };
 
+  /// The optical-tweezers experiment (subsection "Stretching").
+  struct StretchingParameters
+  {
+    double       max_force         = 200.;  ///< [pN]
+    unsigned int n_force_steps     = 8;
+    double       attached_fraction = 0.025; ///< of the membrane area, per bead
+    double       tolerance         = 1e-3;  ///< nodal force residual [pN]
+    unsigned int max_iterations    = 20000;
+
+    static void
+    declare(ParameterHandler &prm);
+    void
+    parse(ParameterHandler &prm);
+  };
+
   /**
    * Steady CO diffusion (subsection "Diffusion"): ∇·(αD∇P) = 0 with αD
    * piecewise constant per material, P = P_A on the alveolar surface and
@@ -201,6 +216,7 @@ namespace rbc_ifem
     FluidParameters    fluid;
     TimeParameters     time;
     MembraneParameters        membrane;
+    StretchingParameters      stretching;
     DiffusionParameters       diffusion;
     LayoutStudyParameters     layout_study;
     MeshConvergenceParameters mesh_convergence;

@@ -387,19 +387,13 @@ namespace rbc_ifem
   double
   Membrane::area(const Vector<double> &x) const
   {
-    double sum = 0.;
-    for (unsigned int c = 0; c < cell_dofs.size(); ++c)
-      sum += cell_terms(c, local_positions(c, x)).area;
-    return sum;
+    return sum_cell_terms(x).area;
   }
 
   double
   Membrane::volume(const Vector<double> &x) const
   {
-    double sum = 0.;
-    for (unsigned int c = 0; c < cell_dofs.size(); ++c)
-      sum += cell_terms(c, local_positions(c, x)).volume;
-    return sum;
+    return sum_cell_terms(x).volume;
   }
 
   double

@@ -130,9 +130,9 @@ namespace rbc_ifem
             if (node_of_dof[first] < 0)
               {
                 node_of_dof[first] = n_nodes++;
-                node_dofs.push_back({first,
-                                     dofs[fe.component_to_system_index(1, a)],
-                                     dofs[fe.component_to_system_index(2, a)]});
+                node_dofs.push_back({{first,
+                                      dofs[fe.component_to_system_index(1, a)],
+                                      dofs[fe.component_to_system_index(2, a)]}});
               }
             nodes[a] = node_of_dof[first];
           }

@@ -76,10 +76,10 @@ namespace
     std::mt19937 random(7);
 
     const std::vector<std::pair<std::string, std::array<bool, 3>>> terms{
-      {"in-plane", {false, false, false}},
-      {"bending", {true, false, false}},
-      {"area", {false, true, false}},
-      {"volume", {false, false, true}}};
+      {"in-plane", {{false, false, false}}},
+      {"bending", {{true, false, false}}},
+      {"area", {{false, true, false}}},
+      {"volume", {{false, false, true}}}};
     MembraneParameters base = with_terms(law, false, false, false);
     base.degree             = degree;
     const Membrane elastic_only(surface, base);

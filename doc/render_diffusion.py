@@ -17,7 +17,7 @@ from vtk_picture import actor, outer_surface, point_camera, read, save_png, scal
 
 def main(directory, picture):
     field = read(directory + "/diffusion_0000.pvtu")
-    membranes = read(directory + "/diffusion_membranes.vtu")
+    membranes = read(directory + "/diffusion_membranes_0000.vtu")
     pressure_range = field.GetPointData().GetArray("co_pressure").GetRange()
     flux_range = membranes.GetPointData().GetArray("co_flux").GetRange()
 

@@ -693,8 +693,10 @@ namespace rbc_ifem
     return iterations;
   }
 
-  void
-  CODiffusion::write_output(const std::string &directory, const std::string &name) const
+  CODiffusion::OutputFiles
+  CODiffusion::write_output(const std::string &directory,
+                            const std::string &name,
+                            const unsigned int counter) const
   {
     TimerOutput::Scope scope(timer, "diffusion: output");
     IndexSet           relevant_dofs;
@@ -711,9 +713,9 @@ namespace rbc_ifem
     data_out.add_data_vector(P, "co_pressure");
     data_out.add_data_vector(material_id, "material_id", DataOut<3>::type_cell_data);
     data_out.build_patches(mapping, fe.degree);
-    const std::string pvtu =
-      data_out.write_vtu_with_pvtu_record(directory + "/", name, 0, communicator, 4);
-    write_pvd(directory, name, {{0., pvtu}}, communicator);
+    OutputFiles files;
+    files.pressure =
+      data_out.write_vtu_with_pvtu_record(directory + "/", name, counter, communicator, 4);
 
     std::vector<Vector<double>> flux(membranes.size());
     for (unsigned int m = 0; m < membranes.size(); ++m)
@@ -723,14 +725,15 @@ namespace rbc_ifem
           flux[m][i] = multiplier_values[multiplier_offsets[m] + i];
       }
     const FluxVector flux_vector(*membrane_mapping);
-    write_membranes(membranes,
+    files.membranes = write_membranes(membranes,
                     *membrane_mapping,
                     directory,
-                    name + "_membranes",
+                    name + "_membranes_" + Utilities::int_to_string(counter, 4),
                     communicator,
                     [&](const unsigned int m, DataOut<2, 3> &membrane_out) {
                       membrane_out.add_data_vector(*multiplier_dof_handlers[m], flux[m], "co_flux");
                       membrane_out.add_data_vector(*multiplier_dof_handlers[m], flux[m], flux_vector);
                     });
+    return files;
   }
 } // namespace rbc_ifem

@@ -47,31 +47,30 @@ namespace rbc_ifem
   }
 
   LayoutUptake
-  solve_layout(const Parameters &      parameters,
-               const LayoutParameters &layout_parameters,
-               const unsigned int      surface_refinements,
-               const unsigned int      band_refinements,
-               const MPI_Comm          communicator,
-               TimerOutput &           timer,
-               const std::string &     fields)
+  solve_uptake(const Parameters &                              parameters,
+               const std::vector<const Triangulation<2, 3> *> &surfaces,
+               const MappingQ<2, 3> &                          mapping,
+               const unsigned int                              band_refinements,
+               const MPI_Comm                                  communicator,
+               TimerOutput &                                   timer,
+               const std::function<void(const CODiffusion &)> &write_fields)
   {
-    Timer                 clock;
-    const CellLayout      layout(layout_parameters, parameters.geometry, parameters.cells);
-    const CellMembranes   membranes(layout.placements(),
-                                  parameters.cells.diameter,
-                                  surface_refinements);
-    membranes.require_clearance(parameters.geometry.capillary_radius);
-
+    Timer                              clock;
     parallel::shared::Triangulation<3> mesh(communicator,
                                             Triangulation<3>::none,
                                             false,
                                             parallel::shared::Triangulation<3>::partition_metis);
     {
-      TimerOutput::Scope scope(timer, "diffusion mesh");
+      TimerOutput::Scope    scope(timer, "diffusion mesh");
+      std::vector<Point<3>> band_points;
+      for (const auto *surface : surfaces)
+        band_points.insert(band_points.end(),
+                           surface->get_vertices().begin(),
+                           surface->get_vertices().end());
       create_diffusion_mesh(mesh,
                             parameters.geometry,
                             parameters.mesh.diffusion_global_refinements);
-      refine_near_points(mesh, membranes.vertices(), parameters.mesh.band_width, band_refinements);
+      refine_near_points(mesh, band_points, parameters.mesh.band_width, band_refinements);
     }
 
     const DiffusionParameters &d = parameters.diffusion;
@@ -81,21 +80,14 @@ namespace rbc_ifem
       DiffusionBoundary::alveolar_surface,
       communicator,
       timer);
-    diffusion.setup(mesh, membranes.surfaces(), membranes.mapping());
+    diffusion.setup(mesh, surfaces, mapping);
     diffusion.assemble();
     diffusion.solve();
-    if (!fields.empty())
-      {
-        create_output_directory(parameters.output_directory, communicator);
-        diffusion.write_output(parameters.output_directory, fields);
-        if (Utilities::MPI::this_mpi_process(communicator) == 0)
-          write_file_atomically(parameters.output_directory + "/cells.csv",
-                                [&](std::ostream &out) { membranes.write_table(out); });
-      }
+    if (write_fields)
+      write_fields(diffusion);
 
     LayoutUptake uptake;
-    uptake.hematocrit = layout.hematocrit(membranes.volumes());
-    uptake.dm_total   = diffusion.dm_total();
+    uptake.dm_total = diffusion.dm_total();
     for (const double flow : diffusion.membrane_flows())
       uptake.dm_cells.push_back(flow / d.alveolar_pressure);
     uptake.n_nodes    = mesh.n_used_vertices();
@@ -103,6 +95,43 @@ namespace rbc_ifem
     uptake.n_dofs     = diffusion.n_pressure_dofs() + diffusion.n_multiplier_dofs();
     uptake.iterations = diffusion.n_iterations();
     uptake.seconds    = clock.wall_time();
+    return uptake;
+  }
+
+  LayoutUptake
+  solve_layout(const Parameters &      parameters,
+               const LayoutParameters &layout_parameters,
+               const unsigned int      surface_refinements,
+               const unsigned int      band_refinements,
+               const MPI_Comm          communicator,
+               TimerOutput &           timer,
+               const std::string &     fields)
+  {
+    const CellLayout    layout(layout_parameters, parameters.geometry, parameters.cells);
+    const CellMembranes membranes(layout.placements(),
+                                  parameters.cells.diameter,
+                                  surface_refinements);
+    membranes.require_clearance(parameters.geometry.capillary_radius);
+
+    const std::string &directory = parameters.output_directory;
+    const auto         write     = [&](const CODiffusion &diffusion) {
+      create_output_directory(directory, communicator);
+      const CODiffusion::OutputFiles files = diffusion.write_output(directory, fields);
+      write_pvd(directory, fields, {{0., files.pressure}}, communicator);
+      write_pvd(directory, fields + "_membranes", {{0., files.membranes}}, communicator);
+      if (Utilities::MPI::this_mpi_process(communicator) == 0)
+        write_file_atomically(directory + "/cells.csv",
+                              [&](std::ostream &out) { membranes.write_table(out); });
+    };
+    LayoutUptake uptake = solve_uptake(parameters,
+                                       membranes.surfaces(),
+                                       membranes.mapping(),
+                                       band_refinements,
+                                       communicator,
+                                       timer,
+                                       fields.empty() ? std::function<void(const CODiffusion &)>() :
+                                                        write);
+    uptake.hematocrit = layout.hematocrit(membranes.volumes());
     return uptake;
   }
 

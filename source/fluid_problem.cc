@@ -159,6 +159,11 @@ namespace rbc_ifem
     residual.reinit(owned, communicator);
     update.reinit(owned, communicator);
     body_force.reinit(owned, communicator);
+    unit_axial_velocity.reinit(owned, communicator);
+    VectorTools::interpolate(mapping,
+                             dof_handler,
+                             Functions::ConstantFunction<3>(std::vector<double>{1., 0., 0., 0.}),
+                             unit_axial_velocity);
   }
 
   void
@@ -421,7 +426,58 @@ namespace rbc_ifem
   void
   FluidProblem::set_frame_velocity(const double velocity)
   {
+    if (velocity == frame_velocity)
+      return;
+    if (current.size() > 0)
+      {
+        TrilinosWrappers::MPI::BlockVector seen_from_new_frame(owned, communicator);
+        seen_from_new_frame = current;
+        seen_from_new_frame.add(frame_velocity - velocity, unit_axial_velocity);
+        current = seen_from_new_frame;
+      }
     frame_velocity = velocity;
+  }
+
+  double
+  FluidProblem::get_frame_velocity() const
+  {
+    return frame_velocity;
+  }
+
+  FluidState
+  FluidProblem::state() const
+  {
+    FluidState state;
+    state.frame_velocity = frame_velocity;
+    state.residual_scale = residual_scale;
+    state.solution.assign(dof_handler.n_dofs(), 0.);
+    types::global_dof_index offset = 0;
+    for (unsigned int b = 0; b < 2; ++b)
+      {
+        for (const auto i : owned[b])
+          state.solution[offset + i] = current.block(b)(i);
+        offset += owned[b].size();
+      }
+    Utilities::MPI::sum(state.solution, communicator, state.solution);
+    return state;
+  }
+
+  void
+  FluidProblem::set_state(const FluidState &state)
+  {
+    AssertDimension(state.solution.size(), dof_handler.n_dofs());
+    TrilinosWrappers::MPI::BlockVector values(owned, communicator);
+    types::global_dof_index            offset = 0;
+    for (unsigned int b = 0; b < 2; ++b)
+      {
+        for (const auto i : owned[b])
+          values.block(b)(i) = state.solution[offset + i];
+        offset += owned[b].size();
+      }
+    values.compress(VectorOperation::insert);
+    current        = values;
+    frame_velocity = state.frame_velocity;
+    residual_scale = state.residual_scale;
   }
 
   void

@@ -103,7 +103,9 @@ namespace rbc_ifem
 
     write_volume_mesh(fluid_mesh, directory, "fluid_mesh", communicator);
     write_volume_mesh(diffusion_mesh, directory, "diffusion_mesh", communicator);
-    write_membranes(membranes.surfaces(), membranes.mapping(), directory, "membranes", communicator);
+    const std::string membrane_file =
+      write_membranes(membranes.surfaces(), membranes.mapping(), directory, "membranes", communicator);
+    write_pvd(directory, "membranes", {{0., membrane_file}}, communicator);
 
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
       {

@@ -4,6 +4,7 @@
 #include <deal.II/grid/filtered_iterator.h>
 #include <deal.II/grid/grid_tools.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -107,6 +108,16 @@ namespace rbc_ifem
   ImmersedCoupling::n_points() const
   {
     return n_membrane_points;
+  }
+
+  double
+  ImmersedCoupling::mesh_size_at_points() const
+  {
+    // Every rank knows every point's cell: no communication.
+    double h = 0.;
+    for (const auto &cell : cell_hints)
+      h = std::max(h, cell->minimum_vertex_distance());
+    return h;
   }
 
   const Particles::ParticleHandler<3> &

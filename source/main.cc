@@ -10,6 +10,7 @@
 #include <rbc_ifem/diffusion_experiment.h>
 #include <rbc_ifem/flow_experiment.h>
 #include <rbc_ifem/geometry_experiment.h>
+#include <rbc_ifem/ifem_simulation.h>
 #include <rbc_ifem/input_error.h>
 #include <rbc_ifem/parameters.h>
 #include <rbc_ifem/solver_failure.h>
@@ -51,7 +52,9 @@ namespace
     Parameters       parameters;
     read_parameters(filename, prm, parameters);
     // Patterns::Selection admits only the experiments that exist.
-    if (parameters.experiment == "flow")
+    if (parameters.experiment == "flow" && parameters.immersed.enabled)
+      IFEMSimulation(parameters, communicator).run(prm);
+    else if (parameters.experiment == "flow")
       FlowExperiment(parameters, communicator).run(prm);
     else if (parameters.experiment == "diffusion" || parameters.experiment == "layouts" ||
              parameters.experiment == "mesh convergence")

@@ -409,23 +409,49 @@ namespace rbc_ifem
   }
 
   void
-  Membrane::write_vtu(const Vector<double> &x,
-                      const std::string &   directory,
-                      const std::string &   name) const
+  Membrane::write_vtu(const Vector<double> &                                   x,
+                      const std::string &                                      directory,
+                      const std::string &                                      name,
+                      const std::vector<std::pair<std::string, Vector<double>>> &dof_vectors) const
   {
     Vector<double> displacement(x);
     displacement -= reference;
     const MappingFEField<2, 3, Vector<double>> mapping(dof_handler, x);
-    DataOut<2, 3>                               data_out;
+    const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_field(
+      3, DataComponentInterpretation::component_is_part_of_vector);
+    DataOut<2, 3> data_out;
     data_out.attach_dof_handler(dof_handler);
     data_out.add_data_vector(displacement,
                              std::vector<std::string>(3, "displacement"),
                              DataOut<2, 3>::type_dof_data,
-                             std::vector<DataComponentInterpretation::DataComponentInterpretation>(
-                               3, DataComponentInterpretation::component_is_part_of_vector));
+                             vector_field);
+    for (const auto &[field_name, values] : dof_vectors)
+      data_out.add_data_vector(values,
+                               std::vector<std::string>(3, field_name),
+                               DataOut<2, 3>::type_dof_data,
+                               vector_field);
     data_out.build_patches(mapping, std::max(2u, parameters.degree), DataOut<2, 3>::curved_inner_cells);
     data_out.set_flags(fast_vtk_flags());
     write_file_atomically(directory + "/" + name + ".vtu",
                           [&](std::ostream &out) { data_out.write_vtu(out); });
+  }
+
+  void
+  Membrane::build_surface(const Vector<double> &x, Triangulation<2, 3> &surface) const
+  {
+    surface.clear();
+    surface.copy_triangulation(dof_handler.get_triangulation());
+    surface.reset_all_manifolds();
+    surface.set_all_manifold_ids(numbers::flat_manifold_id);
+    // The copy has the same cells in the same order; the DoFs of component
+    // d at a vertex are the d-th vertex DoFs of the FESystem.
+    auto surface_cell = surface.begin_active();
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        for (const unsigned int v : cell->vertex_indices())
+          for (unsigned int d = 0; d < 3; ++d)
+            surface_cell->vertex(v)[d] = x[cell->vertex_dof_index(v, d)];
+        ++surface_cell;
+      }
   }
 } // namespace rbc_ifem

@@ -138,7 +138,7 @@ namespace rbc_ifem
       }
   }
 
-  void
+  std::string
   write_membranes(
     const std::vector<const Triangulation<2, 3> *> &          surfaces,
     const MappingQ<2, 3> &                                    mapping,
@@ -147,8 +147,9 @@ namespace rbc_ifem
     const MPI_Comm                                            communicator,
     const std::function<void(unsigned int, DataOut<2, 3> &)> &add_fields)
   {
+    const std::string file = name + ".vtu";
     if (Utilities::MPI::this_mpi_process(communicator) != 0 || surfaces.empty())
-      return;
+      return file;
 
     // One DataOut per membrane; the patches of all go into the first.
     std::vector<Vector<float>>                  cell_index(surfaces.size());
@@ -171,10 +172,8 @@ namespace rbc_ifem
       }
     DataOut<2, 3> &all = *outputs[0];
     all.set_flags(fast_vtk_flags());
-    write_file_atomically(directory + "/" + name + ".vtu", [&](std::ostream &out) {
-      all.write_vtu(out);
-    });
-    write_pvd(directory, name, {{0., name + ".vtu"}}, communicator);
+    write_file_atomically(directory + "/" + file, [&](std::ostream &out) { all.write_vtu(out); });
+    return file;
   }
 
   double

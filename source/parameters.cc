@@ -434,6 +434,78 @@ namespace rbc_ifem
   }
 
   void
+  ImmersedParameters::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Immersed cells");
+    prm.declare_entry("Enabled",
+                      "false",
+                      Patterns::Bool(),
+                      "Experiment flow: true carries the red cells of "
+                      "subsection Layout in the plasma (the immersed finite "
+                      "element method: membrane forces spread to the fluid, "
+                      "membranes moved with the interpolated velocity); false "
+                      "solves for the plasma alone.");
+    prm.declare_entry("Follow cells",
+                      "true",
+                      Patterns::Bool(),
+                      "Move the computational frame with the cells: after "
+                      "every step the frame velocity (Fluid/Frame velocity is "
+                      "its start value) becomes the cells' mean velocity along "
+                      "x, so a cell stays in the short segment. false keeps "
+                      "Fluid/Frame velocity.");
+    prm.declare_entry("Diffusion interval",
+                      "0",
+                      Patterns::Integer(0),
+                      "Solve the CO diffusion on the current membrane shapes "
+                      "at the start and every this many steps (a row of "
+                      "dm.csv, the P field and the flux map); 0: never.");
+    prm.declare_entry("Checkpoint interval",
+                      "0",
+                      Patterns::Integer(0),
+                      "Write Output directory/checkpoint.bin every this many "
+                      "steps (and at the last step); 0: never.");
+    prm.declare_entry("Resume",
+                      "false",
+                      Patterns::Bool(),
+                      "Continue from Output directory/checkpoint.bin, written "
+                      "by an earlier run of the same file on the same number "
+                      "of MPI ranks, up to Time/Number of steps.");
+    prm.declare_entry("Progress interval",
+                      "10",
+                      Patterns::Integer(1),
+                      "Print a progress line (step, time, solver iterations, "
+                      "frame velocity) every this many steps, and at every "
+                      "diffusion solve (with DM) and output (with the volume "
+                      "change and shape of cell 0).");
+    prm.declare_entry("Maximum step displacement",
+                      "0.25",
+                      Patterns::Double(0.),
+                      "The run stops, as diverged, if a membrane point moves "
+                      "farther than this fraction of the fluid mesh size in "
+                      "one step (the explicit coupling is then unstable or "
+                      "inaccurate: reduce Time/Time step).");
+    prm.leave_subsection();
+  }
+
+  void
+  ImmersedParameters::parse(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Immersed cells");
+    enabled               = prm.get_bool("Enabled");
+    follow_cells          = prm.get_bool("Follow cells");
+    diffusion_interval    = prm.get_integer("Diffusion interval");
+    checkpoint_interval   = prm.get_integer("Checkpoint interval");
+    resume                = prm.get_bool("Resume");
+    max_step_displacement = prm.get_double("Maximum step displacement");
+    progress_interval     = prm.get_integer("Progress interval");
+    prm.leave_subsection();
+    if (!(max_step_displacement > 0.))
+      throw InputError("Immersed cells/Maximum step displacement",
+                       to_string(max_step_displacement),
+                       "it must be > 0 (a fraction of the fluid mesh size).");
+  }
+
+  void
   StretchingParameters::declare(ParameterHandler &prm)
   {
     prm.enter_subsection("Stretching");
@@ -658,8 +730,10 @@ namespace rbc_ifem
                       "every kind and number of cells of subsection Layout "
                       "study (layouts.csv). mesh convergence: DM of the "
                       "layout on successively finer meshes (convergence.csv). "
-                      "flow: the plasma flow in the capillary without cells, "
-                      "for Time/Number of steps (flow.csv, VTU of v and p). "
+                      "flow: the plasma flow in the capillary for Time/Number "
+                      "of steps (flow.csv, VTU of v and p), with the cells of "
+                      "subsection Layout in it if Immersed cells/Enabled "
+                      "(cells.csv, dm.csv, VTU of the membranes). "
                       "stretching: one cell pulled by two beads with forces "
                       "up to Stretching/Maximum force (stretch.csv, VTU of "
                       "each equilibrium).");
@@ -674,6 +748,7 @@ namespace rbc_ifem
     FluidParameters::declare(prm);
     TimeParameters::declare(prm);
     MembraneParameters::declare(prm);
+    ImmersedParameters::declare(prm);
     StretchingParameters::declare(prm);
     DiffusionParameters::declare(prm);
     LayoutStudyParameters::declare(prm);
@@ -698,6 +773,7 @@ namespace rbc_ifem
     fluid.parse(prm);
     time.parse(prm);
     membrane.parse(prm);
+    immersed.parse(prm);
     stretching.parse(prm);
     diffusion.parse(prm);
     layout_study.parse(prm);

@@ -120,14 +120,24 @@ namespace rbc_ifem
     unsigned int
     n_iterations() const;
 
+    /// The files of one write_output().
+    struct OutputFiles
+    {
+      std::string pressure;  ///< NAME_CCCC.pvtu
+      std::string membranes; ///< NAME_membranes_CCCC.vtu
+    };
+
     /**
-     * P as NAME_0000.pvtu (+ pieces, NAME.pvd) and the membranes as
-     * NAME_membranes.vtu (+ .pvd) with the flux density λ as a scalar
-     * "co_flux" and as the vector "co_flux_vector" = -λ n (pointing into the
-     * cell: the direction CO moves, the paper's Fig. 4f).
+     * P as NAME_CCCC.pvtu (+ one piece per rank) and the membranes as
+     * NAME_membranes_CCCC.vtu with the flux density λ as a scalar "co_flux"
+     * and as the vector "co_flux_vector" = -λ n (pointing into the cell: the
+     * direction CO moves, the paper's Fig. 4f); CCCC is @p counter. The
+     * caller lists the files in its .pvd records.
      */
-    void
-    write_output(const std::string &directory, const std::string &name) const;
+    OutputFiles
+    write_output(const std::string &directory,
+                 const std::string &name,
+                 const unsigned int counter = 0) const;
 
   private:
     struct CouplingData;

@@ -6,12 +6,18 @@
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
 #include <deal.II/base/types.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/grid/tria.h>
+
+#include <functional>
 
 #include <string>
 #include <vector>
 
 namespace rbc_ifem
 {
+  class CODiffusion;
+
   /// What one diffusion solve of one layout gives.
   struct LayoutUptake
   {
@@ -24,6 +30,22 @@ namespace rbc_ifem
     unsigned int            iterations = 0;
     double                  seconds    = 0.; ///< wall time of the whole solve
   };
+
+  /**
+   * Solve for the CO uptake of the membranes @p surfaces (curved by
+   * @p mapping), on the capillary's diffusion mesh refined
+   * @p band_refinements times in the band around their vertices; then call
+   * @p write_fields, if given, to write what the caller wants of the solve.
+   * The hematocrit of the result is left to the caller.
+   */
+  LayoutUptake
+  solve_uptake(const Parameters &                              parameters,
+               const std::vector<const Triangulation<2, 3> *> &surfaces,
+               const MappingQ<2, 3> &                          mapping,
+               const unsigned int                              band_refinements,
+               const MPI_Comm                                  communicator,
+               TimerOutput &                                   timer,
+               const std::function<void(const CODiffusion &)> &write_fields = {});
 
   /**
    * Build the layout @p layout of the run's cells, their membranes

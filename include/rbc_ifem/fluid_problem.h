@@ -65,6 +65,26 @@ namespace rbc_ifem
   };
 
   /**
+   * Everything a restart needs to continue a FluidProblem: the solution
+   * (every entry, in the DoF order of the same mesh on the same number of
+   * ranks), the frame velocity, and the residual scale the solver's
+   * tolerance refers to.
+   */
+  struct FluidState
+  {
+    std::vector<double> solution;
+    double              frame_velocity = 0.;
+    double              residual_scale = 0.;
+
+    template <class Archive>
+    void
+    serialize(Archive &archive, const unsigned int)
+    {
+      archive &solution &frame_velocity &residual_scale;
+    }
+  };
+
+  /**
    * The plasma flow in the capillary lumen (design.md, "Fluid"): velocity v
    * and pressure p in Taylor-Hood Q2-Q1 on a parallel::shared mesh from
    * create_fluid_mesh(), with a quadratic mapping for the curved wall.
@@ -115,9 +135,25 @@ namespace rbc_ifem
     void
     set_time_step(const double time_step);
 
-    /// Change the frame velocity U_frame [µm/s]; takes effect at the next step.
+    /**
+     * Change the frame velocity U_frame [µm/s]: the boundary values change
+     * at the next step, and the current field is seen from the new frame
+     * (v - ΔU e_x, a Galilean change), so the time derivative holds no
+     * spurious acceleration.
+     */
     void
     set_frame_velocity(const double frame_velocity);
+
+    double
+    get_frame_velocity() const;
+
+    /// The state a restart needs (collective; the same on every rank).
+    FluidState
+    state() const;
+
+    /// Continue from @p state, taken from a problem with the same DoFs.
+    void
+    set_state(const FluidState &state);
 
     /**
      * Body-force hook: a load vector with the layout of solution(), velocity
@@ -201,6 +237,7 @@ namespace rbc_ifem
     TrilinosWrappers::MPI::BlockVector residual;    ///< owned
     TrilinosWrappers::MPI::BlockVector update;      ///< owned
     TrilinosWrappers::MPI::BlockVector body_force;  ///< owned load vector
+    TrilinosWrappers::MPI::BlockVector unit_axial_velocity; ///< owned, v = e_x, p = 0
   };
 } // namespace rbc_ifem
 

@@ -79,6 +79,13 @@ namespace rbc_ifem
     unsigned int
     n_points() const;
 
+    /**
+     * The fluid mesh size the membranes see: the largest edge length
+     * (shortest vertex distance) of the fluid cells that hold points [µm].
+     */
+    double
+    mesh_size_at_points() const;
+
     const Particles::ParticleHandler<3> &
     get_particle_handler() const;
 

@@ -14,6 +14,7 @@
 
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rbc_ifem
@@ -109,11 +110,25 @@ namespace rbc_ifem
     reference_volume() const;
 
     /**
-     * The deformed surface x as NAME.vtu in @p directory (rank 0 writes),
-     * curved by a MappingFEField on x, with the displacement x - X.
+     * The deformed surface x as NAME.vtu in @p directory (the caller decides
+     * which rank writes), curved by a MappingFEField on x, with the
+     * displacement x - X and, as further vector fields, each (name, vector)
+     * of @p dof_vectors (one entry per DoF, like the forces).
      */
     void
-    write_vtu(const Vector<double> &x, const std::string &directory, const std::string &name) const;
+    write_vtu(const Vector<double> &                                   x,
+              const std::string &                                      directory,
+              const std::string &                                      name,
+              const std::vector<std::pair<std::string, Vector<double>>> &dof_vectors = {}) const;
+
+    /**
+     * The surface x as a mesh with flat cells between its vertices (the
+     * nodes, for k = 1, where that is the membrane itself): what the CO
+     * diffusion solve takes as the membrane at this instant. @p surface is
+     * replaced by a copy of the reference mesh with moved vertices.
+     */
+    void
+    build_surface(const Vector<double> &x, Triangulation<2, 3> &surface) const;
 
   private:
     template <typename Number>

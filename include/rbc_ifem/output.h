@@ -62,13 +62,13 @@ namespace rbc_ifem
                     const MPI_Comm          communicator);
 
   /**
-   * All membrane surfaces in one NAME.vtu (and NAME.pvd), curved with
-   * @p mapping, with the cell index as cell data. Written by rank 0.
-   * @p add_fields(i, data_out), if given, adds the fields of membrane i
-   * (the same names on every membrane) to its DataOut before the patches
-   * are built.
+   * All membrane surfaces in one NAME.vtu, curved with @p mapping, with the
+   * cell index as cell data. Written by rank 0; returns the file's name
+   * (for a .pvd record). @p add_fields(i, data_out), if given, adds the
+   * fields of membrane i (the same names on every membrane) to its DataOut
+   * before the patches are built.
    */
-  void
+  std::string
   write_membranes(
     const std::vector<const Triangulation<2, 3> *> &                  surfaces,
     const MappingQ<2, 3> &                                            mapping,
@@ -76,7 +76,6 @@ namespace rbc_ifem
     const std::string &                                               name,
     const MPI_Comm                                                    communicator,
     const std::function<void(unsigned int, DataOut<2, 3> &)> &add_fields = {});
-
   /// The peak resident memory of the largest rank, in MB.
   double
   peak_memory_mb(const MPI_Comm communicator);

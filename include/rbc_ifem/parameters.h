@@ -132,6 +132,27 @@ namespace rbc_ifem
     parse(ParameterHandler &prm);
   };
 
+  /**
+   * Experiment "flow" with red cells in the plasma, the immersed method
+   * (subsection "Immersed cells"): what the time loop of IFEMSimulation
+   * does besides the steps of subsection Time.
+   */
+  struct ImmersedParameters
+  {
+    bool         enabled                 = false; ///< carry the cells of subsection Layout
+    bool         follow_cells            = true;  ///< frame velocity = the cells' mean velocity
+    unsigned int diffusion_interval      = 0;     ///< DM every this many steps; 0: never
+    unsigned int checkpoint_interval     = 0;     ///< 0: never
+    bool         resume                  = false; ///< from Output directory/checkpoint.bin
+    double       max_step_displacement   = 0.25;  ///< of the fluid mesh size h, per step
+    unsigned int progress_interval       = 10;    ///< a progress line every this many steps
+
+    static void
+    declare(ParameterHandler &prm);
+    void
+    parse(ParameterHandler &prm);
+  };
+
   /// The optical-tweezers experiment (subsection "Stretching").
   struct StretchingParameters
   {
@@ -216,6 +237,7 @@ namespace rbc_ifem
     FluidParameters    fluid;
     TimeParameters     time;
     MembraneParameters        membrane;
+    ImmersedParameters        immersed;
     StretchingParameters      stretching;
     DiffusionParameters       diffusion;
     LayoutStudyParameters     layout_study;

@@ -5,7 +5,7 @@
 benchmark_setup() {
   local here
   here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-  exe=${1:-$here/build/rbc-ifem}
+  exe=$(realpath "${1:-$here/build/rbc-ifem}")
   ranks=${2:-1}
   export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
   work=$(mktemp -d)

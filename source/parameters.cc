@@ -780,6 +780,10 @@ namespace rbc_ifem
     mesh_convergence.parse(prm);
     geometry.validate();
     cells.validate(geometry);
+    if (experiment == "flow" && immersed.enabled && layout.n_cells == 0)
+      throw InputError("Layout/Number of cells",
+                       "0",
+                       "a flow with Immersed cells/Enabled = true needs at least one cell.");
   }
 
   void

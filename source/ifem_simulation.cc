@@ -130,7 +130,8 @@ namespace rbc_ifem
           << "  Reynolds number ρ ū 2R / μ = " << reynolds << "\n"
           << "  capillary number μ ū / G = " << capillary << "\n"
           << "  explicit-coupling time step limit ≈ " << stable_step << " s (in-plane "
-          << in_plane_step << " s, bending " << bending_step << " s); Δt = "
+          << in_plane_step << " s, bending " << bending_step
+          << " s); runs stay stable below about 0.7 of it (doc/ifem.md); Δt = "
           << parameters.time.time_step << " s" << std::endl;
     if (parameters.time.time_step > stable_step)
       pcout << "  WARNING: Time/Time step = " << parameters.time.time_step

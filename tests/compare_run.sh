@@ -9,6 +9,7 @@
 # named in the stored file's header are compared, so a stored file can leave
 # out columns that legitimately differ (iteration counts across rank counts).
 set -u
+source "$(dirname "$0")/script_setup.sh"
 tolerance=1e-8
 ranks=
 mpiexec=
@@ -26,14 +27,8 @@ prm=$2
 expected=$3
 numdiff=$4
 
-launcher=()
-if [ -n "$ranks" ]; then
-  export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
-  launcher=("$mpiexec" -np "$ranks")
-fi
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
+set_launcher "$ranks" "$mpiexec"
+enter_scratch_directory
 
 "${launcher[@]}" "$exe" "$prm" >log.txt 2>&1
 status=$?

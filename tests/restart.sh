@@ -5,6 +5,7 @@
 # go, and again as n steps (writing a checkpoint) plus a resumed run to
 # step 2n, and requires the tables of both to agree to 1e-12 (relative).
 set -u
+source "$(dirname "$0")/script_setup.sh"
 ranks=
 mpiexec=
 while getopts "n:m:" option; do
@@ -19,14 +20,8 @@ exe=$1
 prm=$2
 numdiff=$3
 
-launcher=()
-if [ -n "$ranks" ]; then
-  export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
-  launcher=("$mpiexec" -np "$ranks")
-fi
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
+set_launcher "$ranks" "$mpiexec"
+enter_scratch_directory
 
 steps=$(sed -n 's/^ *set Number of steps *= *//p' "$prm")
 half=$((steps / 2))

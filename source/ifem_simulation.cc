@@ -468,11 +468,11 @@ namespace rbc_ifem
         if (diffusion)
           progress << ", DM " << solve_uptake(step / immersed.diffusion_interval)
                    << " µm³/(s Torr)";
+        const CellShape shape = (output ? record_shapes() : cells.shapes())[0];
+        progress << "; cell 0: volume change " << shape.volume / cells.reference_volume(0) - 1.
+                 << ", deformation index " << shape.deformation_index;
         if (output)
           {
-            const CellShape shape = record_shapes()[0];
-            progress << "; cell 0: volume change " << shape.volume / cells.reference_volume(0) - 1.
-                     << ", deformation index " << shape.deformation_index;
             write_fields();
             write_tables();
           }

@@ -474,9 +474,9 @@ namespace rbc_ifem
                       "10",
                       Patterns::Integer(1),
                       "Print a progress line (step, time, solver iterations, "
-                      "frame velocity) every this many steps, and at every "
-                      "diffusion solve (with DM) and output (with the volume "
-                      "change and shape of cell 0).");
+                      "frame velocity, volume change and deformation index of "
+                      "cell 0) every this many steps, and at every diffusion "
+                      "solve (with DM) and output.");
     prm.declare_entry("Maximum step displacement",
                       "0.25",
                       Patterns::Double(0.),

@@ -103,6 +103,7 @@ namespace rbc_ifem
                          e.what());
       }
     mesh_size = coupling->mesh_size_at_points();
+    load.reinit(fluid.owned_partitioning(), communicator);
   }
 
   void
@@ -160,8 +161,8 @@ namespace rbc_ifem
       if (!std::isfinite(force.norm()))
         stop("the membrane forces are not finite", last_good);
     {
-      TimerOutput::Scope                 scope(timer, "coupling: spread");
-      TrilinosWrappers::MPI::BlockVector load(fluid.owned_partitioning(), communicator);
+      TimerOutput::Scope scope(timer, "coupling: spread");
+      load = 0.;
       coupling->spread(forces, fluid.zero_constraints(), load);
       fluid.set_body_force(load);
     }

@@ -119,6 +119,7 @@ namespace rbc_ifem
     std::unique_ptr<ImmersedCoupling>  coupling;
     RunRecord                          record;
     double                             mesh_size = 0.; ///< fluid h at the membranes [µm]
+    TrilinosWrappers::MPI::BlockVector load;           ///< the spread forces, owned
   };
 } // namespace rbc_ifem
 

@@ -27,7 +27,8 @@ namespace rbc_ifem
     , geometry(geometry)
     , axis(cell_parameters.axis)
   {
-    const EvansFungShape shape(cell_parameters.diameter);
+    const EvansFungShape shape =
+      EvansFungShape::named(cell_parameters.shape, cell_parameters.diameter);
     const CellPlacement  reference{Point<3>(), axis};
     const Tensor<1, 3>   e_x{{1., 0., 0.}};
 

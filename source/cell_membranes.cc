@@ -6,12 +6,11 @@
 namespace rbc_ifem
 {
   CellMembranes::CellMembranes(const std::vector<CellPlacement> &placements,
-                               const double                      diameter,
+                               const EvansFungShape &            shape,
                                const unsigned int                surface_refinements)
     : surface_refinements(surface_refinements)
     , membrane_mapping(2)
   {
-    const EvansFungShape shape(diameter);
     for (const CellPlacement &placement : placements)
       {
         membranes.push_back(std::make_unique<Triangulation<2, 3>>());

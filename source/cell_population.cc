@@ -9,7 +9,9 @@ namespace rbc_ifem
   CellPopulation::CellPopulation(const std::vector<CellPlacement> &placements,
                                  const CellParameters &            cells,
                                  const MembraneParameters &        membrane)
-    : references(placements, cells.diameter, cells.surface_refinements)
+    : references(placements,
+                 EvansFungShape::named(cells.shape, cells.diameter),
+                 cells.surface_refinements)
     , flat_mapping(1)
   {
     for (const Triangulation<2, 3> *surface : references.surfaces())
@@ -44,18 +46,41 @@ namespace rbc_ifem
     return result;
   }
 
+  void
+  CellPopulation::hold(const double stiffness)
+  {
+    tether_stiffness = stiffness;
+  }
+
   std::vector<Tensor<1, 3>>
   CellPopulation::compute_forces()
   {
     std::vector<Tensor<1, 3>> result;
     result.reserve(n_membrane_points);
+    total_tether_force = 0.;
     for (unsigned int c = 0; c < size(); ++c)
       {
         membranes[c]->energy_and_forces(x[c], forces[c]);
+        if (tether_stiffness > 0.)
+          {
+            const Vector<double> &X = membranes[c]->reference_positions();
+            for (unsigned int i = 0; i < x[c].size(); ++i)
+              {
+                const double spring = -tether_stiffness * (x[c][i] - X[i]);
+                forces[c][i] += spring;
+                total_tether_force[membranes[c]->component(i)] += spring;
+              }
+          }
         for (const auto &dofs : membranes[c]->nodes())
           result.push_back(Tensor<1, 3>({forces[c][dofs[0]], forces[c][dofs[1]], forces[c][dofs[2]]}));
       }
     return result;
+  }
+
+  Tensor<1, 3>
+  CellPopulation::held_force() const
+  {
+    return total_tether_force;
   }
 
   void
@@ -80,7 +105,8 @@ namespace rbc_ifem
     for (unsigned int c = 0; c < size(); ++c)
       {
         CellShape &shape = result[c];
-        shape.centroid   = measure_surface(*surfaces[c], flat_mapping).centroid;
+        const SurfaceMeasures measures = measure_surface(*surfaces[c], flat_mapping);
+        shape.centroid   = measures.centroid;
         shape.area       = membranes[c]->area(x[c]);
         shape.volume     = membranes[c]->volume(x[c]);
         double x_min = std::numeric_limits<double>::max(), x_max = -x_min;
@@ -95,6 +121,9 @@ namespace rbc_ifem
         shape.axial_length = x_max - x_min;
         shape.deformation_index =
           (shape.axial_length - 2. * shape.max_radius) / (shape.axial_length + 2. * shape.max_radius);
+        const ShearPlaneEllipse ellipse = shear_plane_ellipse(measures.second_moment);
+        shape.taylor_deformation        = ellipse.taylor_deformation;
+        shape.inclination               = ellipse.inclination;
       }
     return result;
   }

@@ -63,6 +63,7 @@ namespace rbc_ifem
       c += v / surface.n_vertices();
     SurfaceMeasures m;
     Tensor<1, 3>    first_moment;
+    Tensor<2, 3>    second_moment; // about c
     for_each_quadrature_point(
       surface,
       mapping,
@@ -73,9 +74,21 @@ namespace rbc_ifem
         m.volume += y * n * JxW / 3.;
         for (unsigned int d = 0; d < 3; ++d)
           first_moment[d] += 0.5 * y[d] * y[d] * n[d] * JxW;
+        second_moment += outer_product(y, y) * (y * n) * JxW / 5.;
       });
-    m.centroid = c + first_moment / m.volume;
+    m.centroid             = c + first_moment / m.volume;
+    const Tensor<1, 3> d   = m.centroid - c;
+    m.second_moment        = second_moment - m.volume * outer_product(d, d);
     return m;
+  }
+
+  ShearPlaneEllipse
+  shear_plane_ellipse(const Tensor<2, 3> &S)
+  {
+    const double mean            = (S[0][0] + S[1][1]) / 2.;
+    const double half_difference = std::hypot((S[0][0] - S[1][1]) / 2., S[0][1]);
+    const double L = std::sqrt(mean + half_difference), B = std::sqrt(std::max(0., mean - half_difference));
+    return {(L - B) / (L + B), 0.5 * std::atan2(2. * S[0][1], S[0][0] - S[1][1])};
   }
 
   Clearance

@@ -109,7 +109,8 @@ namespace rbc_ifem
   {
     const CellLayout    layout(layout_parameters, parameters.geometry, parameters.cells);
     const CellMembranes membranes(layout.placements(),
-                                  parameters.cells.diameter,
+                                  EvansFungShape::named(parameters.cells.shape,
+                                                        parameters.cells.diameter),
                                   surface_refinements);
     membranes.require_clearance(parameters.geometry.capillary_radius);
 

@@ -7,9 +7,17 @@
 
 namespace rbc_ifem
 {
-  EvansFungShape::EvansFungShape(const double diameter)
+  EvansFungShape::EvansFungShape(const double diameter, const Coefficients &coefficients)
     : R(diameter / 2.)
+    , a(coefficients)
   {}
+
+  EvansFungShape
+  EvansFungShape::named(const std::string &name, const double diameter)
+  {
+    Assert(name == "biconcave" || name == "sphere", ExcMessage("unknown shape " + name));
+    return EvansFungShape(diameter, name == "sphere" ? sphere : red_cell);
+  }
 
   double
   EvansFungShape::radius() const
@@ -21,21 +29,21 @@ namespace rbc_ifem
   EvansFungShape::g(const double t) const
   {
     const double u = 1. - t * t;
-    return a0 + a1 * u + a2 * u * u;
+    return a[0] + a[1] * u + a[2] * u * u;
   }
 
   double
   EvansFungShape::dg(const double t) const
   {
     const double u = 1. - t * t;
-    return -2. * t * (a1 + 2. * a2 * u);
+    return -2. * t * (a[1] + 2. * a[2] * u);
   }
 
   double
   EvansFungShape::half_thickness(const double r) const
   {
     const double rho2 = std::min(1., (r / R) * (r / R));
-    return 0.5 * R * std::sqrt(1. - rho2) * (a0 + a1 * rho2 + a2 * rho2 * rho2);
+    return 0.5 * R * std::sqrt(1. - rho2) * (a[0] + a[1] * rho2 + a[2] * rho2 * rho2);
   }
 
   Point<3>
@@ -187,15 +195,15 @@ namespace rbc_ifem
   }
   namespace
   {
-    /// ∫ over t in [-1, 1] of f(t, r², z'(t)) for the profile of @p R.
+    /// ∫ over t in [-1, 1] of f(t, r², z'(t)) for the profile of @p shape.
     template <typename Integrand>
     double
-    integrate_profile(const double R, const Integrand &f)
+    integrate_profile(const EvansFungShape &shape, const Integrand &f)
     {
-      const double a0 = EvansFungShape::a0, a1 = EvansFungShape::a1, a2 = EvansFungShape::a2;
-      const auto   z_prime = [&](const double t) {
-        const double u = 1. - t * t;
-        return 0.5 * R * (a0 + a1 * u + a2 * u * u + t * (-2. * t * a1 - 4. * t * a2 * u));
+      const double R = shape.radius();
+      // z(t) = 0.5 R t g(t) is the z component of F on the axis s = (0, 0, t).
+      const auto z_prime = [&](const double t) {
+        return shape.from_sphere_gradient(Point<3>(0., 0., t))[2][2];
       };
       const QGauss<1> gauss(60);
       double          sum = 0.;
@@ -213,7 +221,7 @@ namespace rbc_ifem
   EvansFungShape::exact_area() const
   {
     const double R = radius();
-    return integrate_profile(R, [R](const double t, const double r2, const double zp) {
+    return integrate_profile(*this, [R](const double t, const double r2, const double zp) {
       return 2. * numbers::PI * std::sqrt(R * R * R * R * t * t + r2 * zp * zp);
     });
   }
@@ -221,7 +229,7 @@ namespace rbc_ifem
   double
   EvansFungShape::exact_volume() const
   {
-    return integrate_profile(radius(), [](const double, const double r2, const double zp) {
+    return integrate_profile(*this, [](const double, const double r2, const double zp) {
       return numbers::PI * r2 * zp;
     });
   }

@@ -18,7 +18,7 @@ namespace rbc_ifem
                     parallel::shared::Triangulation<3>::partition_metis)
     , fluid(triangulation,
             parameters.fluid,
-            parameters.geometry,
+            FlowDrive::capillary(parameters.fluid, parameters.geometry),
             parameters.time.time_step,
             timer)
   {}

@@ -55,13 +55,70 @@ namespace rbc_ifem
   }
 
 
+  SimpleShearFlow::SimpleShearFlow(const double shear_rate)
+    : Function<3>(4)
+    , shear_rate(shear_rate)
+  {}
+
+  double
+  SimpleShearFlow::value(const Point<3> &p, const unsigned int component) const
+  {
+    return component == 0 ? shear_rate * p[1] : 0.;
+  }
+
+
+  FlowDrive
+  FlowDrive::capillary(const FluidParameters &fluid, const GeometryParameters &geometry)
+  {
+    FlowDrive drive;
+    drive.dirichlet[FluidBoundary::wall] = std::make_shared<Functions::ZeroFunction<3>>(4);
+    drive.dirichlet[FluidBoundary::inlet] =
+      std::make_shared<PoiseuilleFlow>(fluid.inlet_mean_speed, 0., fluid.viscosity, geometry);
+    return drive;
+  }
+
+  FlowDrive
+  FlowDrive::shear(const double shear_rate)
+  {
+    FlowDrive drive;
+    drive.dirichlet[FluidBoundary::wall] = std::make_shared<SimpleShearFlow>(shear_rate);
+    return drive;
+  }
+
+
+  namespace
+  {
+    /// scale (v(p) - U e_x): a drive's velocity seen from a frame moving with U.
+    class FrameVelocity : public Function<3>
+    {
+    public:
+      FrameVelocity(const Function<3> &velocity, const double frame_velocity, const double scale)
+        : Function<3>(4)
+        , velocity(velocity)
+        , frame_velocity(frame_velocity)
+        , scale(scale)
+      {}
+
+      double
+      value(const Point<3> &p, const unsigned int component) const override
+      {
+        return scale * (velocity.value(p, component) - (component == 0 ? frame_velocity : 0.));
+      }
+
+    private:
+      const Function<3> &velocity;
+      const double       frame_velocity, scale;
+    };
+  } // namespace
+
+
   FluidProblem::FluidProblem(const parallel::shared::Triangulation<3> &triangulation,
                              const FluidParameters &                   parameters,
-                             const GeometryParameters &                geometry,
+                             const FlowDrive &                         drive,
                              const double                              time_step,
                              TimerOutput &                             timer)
     : parameters(parameters)
-    , geometry(geometry)
+    , drive(drive)
     , time_step(time_step)
     , communicator(triangulation.get_communicator())
     , timer(timer)
@@ -114,17 +171,14 @@ namespace rbc_ifem
     constraints.reinit(relevant_dofs);
     DoFTools::make_hanging_node_constraints(dof_handler, constraints);
 
-    const PoiseuilleFlow inflow(scale * parameters.inlet_mean_speed,
-                                scale * frame_velocity,
-                                parameters.viscosity,
-                                geometry);
-    const Functions::ConstantFunction<3> wall(
-      std::vector<double>{-scale * frame_velocity, 0., 0., 0.});
     const ComponentMask velocity_mask = fe.component_mask(velocities);
-    VectorTools::interpolate_boundary_values(
-      mapping, dof_handler, FluidBoundary::wall, wall, constraints, velocity_mask);
-    VectorTools::interpolate_boundary_values(
-      mapping, dof_handler, FluidBoundary::inlet, inflow, constraints, velocity_mask);
+    for (const auto &[boundary, velocity] : drive.dirichlet)
+      VectorTools::interpolate_boundary_values(mapping,
+                                               dof_handler,
+                                               boundary,
+                                               FrameVelocity(*velocity, frame_velocity, scale),
+                                               constraints,
+                                               velocity_mask);
     constraints.close();
   }
 

@@ -16,7 +16,7 @@ namespace rbc_ifem
     , timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times)
     , layout(parameters.layout, parameters.geometry, parameters.cells)
     , membranes(layout.placements(),
-                parameters.cells.diameter,
+                EvansFungShape::named(parameters.cells.shape, parameters.cells.diameter),
                 parameters.cells.surface_refinements)
     , fluid_mesh(communicator,
                  Triangulation<3>::none,

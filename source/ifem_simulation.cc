@@ -9,6 +9,7 @@
 
 #include <boost/archive/binary_iarchive.hpp>
 #include <boost/archive/binary_oarchive.hpp>
+#include <boost/serialization/array.hpp>
 #include <boost/serialization/string.hpp>
 #include <boost/serialization/utility.hpp>
 #include <boost/serialization/vector.hpp>
@@ -35,12 +36,6 @@ namespace rbc_ifem
       return row.str();
     }
 
-    std::vector<CellPlacement>
-    starting_placements(const Parameters &parameters)
-    {
-      return CellLayout(parameters.layout, parameters.geometry, parameters.cells).placements();
-    }
-
     /// Everything in a checkpoint: the run's record, the fluid, the membranes.
     struct Checkpoint
     {
@@ -58,9 +53,24 @@ namespace rbc_ifem
     };
   } // namespace
 
-  IFEMSimulation::IFEMSimulation(const Parameters &parameters, const MPI_Comm communicator)
+  CouplingTimeStepLimit::CouplingTimeStepLimit(const double              viscosity,
+                                               const MembraneParameters &m,
+                                               const double              point_spacing,
+                                               const double              mesh_size)
+  {
+    const double q = numbers::PI / std::max(point_spacing, 0.5 * mesh_size);
+    in_plane       = 8. * viscosity / ((m.area_dilation_modulus + m.shear_modulus) * q);
+    bending        = 8. * viscosity / (m.bending_modulus * q * q * q);
+    limit          = std::min(in_plane, bending);
+  }
+
+
+  IFEMSimulation::IFEMSimulation(const Parameters &parameters,
+                                 const MPI_Comm    communicator,
+                                 const FlowDomain &domain)
     : parameters(parameters)
     , communicator(communicator)
+    , domain(domain)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
     // Rank 0's own clock: a TimerOutput on the world communicator warns at
     // length when an exception unwinds through it.
@@ -69,10 +79,11 @@ namespace rbc_ifem
                     Triangulation<3>::none,
                     false,
                     parallel::shared::Triangulation<3>::partition_metis)
-    , fluid(triangulation, parameters.fluid, parameters.geometry, parameters.time.time_step, timer)
-    , cells(starting_placements(parameters), parameters.cells, parameters.membrane)
+    , fluid(triangulation, parameters.fluid, domain.drive, parameters.time.time_step, timer)
+    , cells(domain.placements, parameters.cells, parameters.membrane)
   {
     record.cell_files.resize(cells.size());
+    cells.hold(parameters.immersed.tether_stiffness);
   }
 
   void
@@ -80,9 +91,7 @@ namespace rbc_ifem
   {
     {
       TimerOutput::Scope scope(timer, "fluid mesh");
-      create_fluid_mesh(triangulation,
-                        parameters.geometry,
-                        parameters.mesh.fluid_global_refinements);
+      domain.create_mesh(triangulation, parameters);
       refine_near_points(triangulation,
                          cells.points(),
                          parameters.mesh.band_width,
@@ -98,9 +107,7 @@ namespace rbc_ifem
       }
     catch (const std::runtime_error &e)
       {
-        throw InputError(std::string("the cells of subsection Layout do not fit into the "
-                                     "capillary: ") +
-                         e.what());
+        throw InputError("the cells do not fit into " + domain.name() + ": " + e.what());
       }
     mesh_size = coupling->mesh_size_at_points();
     load.reinit(fluid.owned_partitioning(), communicator);
@@ -111,27 +118,22 @@ namespace rbc_ifem
   {
     const FluidParameters &   f = parameters.fluid;
     const MembraneParameters &m = parameters.membrane;
-    const double              speed = std::abs(f.inlet_mean_speed);
-    const double reynolds = f.density * speed * 2. * parameters.geometry.capillary_radius / f.viscosity;
-    const double capillary = f.viscosity * speed / m.shear_modulus;
-    // Explicit coupling: a membrane wave of wavenumber q relaxes in a Stokes
-    // fluid at the rate ω = E(q)/(4μq), E(q) its stiffness per area, (K+G)q²
-    // in-plane and κq⁴ in bending; explicit Euler needs ω Δt < 2. The
-    // shortest wave both the membrane points (spacing s) and the Q2 fluid
-    // velocity (node spacing h/2) resolve has q = π / max(s, h/2).
-    const double spacing       = cells.point_spacing();
-    const double q             = numbers::PI / std::max(spacing, 0.5 * mesh_size);
-    const double in_plane_step = 8. * f.viscosity / ((m.area_dilation_modulus + m.shear_modulus) * q);
-    const double bending_step  = 8. * f.viscosity / (m.bending_modulus * q * q * q);
-    const double stable_step   = std::min(in_plane_step, bending_step);
+    const double              speed  = domain.velocity_scale(parameters);
+    const double              length = domain.length_scale(parameters);
+    const bool                box    = domain.kind == FlowDomain::Kind::shear_box;
+    const double              spacing = cells.point_spacing();
+    const CouplingTimeStepLimit stable(f.viscosity, m, spacing, mesh_size);
+    const double                stable_step = stable.limit;
 
     pcout << "  cells: " << cells.size() << ", " << cells.n_points()
           << " membrane points, spacing up to " << spacing << " µm; fluid mesh size at the cells h = "
           << mesh_size << " µm\n"
-          << "  Reynolds number ρ ū 2R / μ = " << reynolds << "\n"
-          << "  capillary number μ ū / G = " << capillary << "\n"
+          << "  Reynolds number " << (box ? "ρ γ̇ a² / μ = " : "ρ ū 2R / μ = ")
+          << f.density * speed * length / f.viscosity << "\n"
+          << "  capillary number " << (box ? "μ a γ̇ / G = " : "μ ū / G = ")
+          << f.viscosity * speed / m.shear_modulus << "\n"
           << "  explicit-coupling time step limit ≈ " << stable_step << " s (in-plane "
-          << in_plane_step << " s, bending " << bending_step
+          << stable.in_plane << " s, bending " << stable.bending
           << " s); runs stay stable below about 0.7 of it (doc/ifem.md); Δt = "
           << parameters.time.time_step << " s" << std::endl;
     if (parameters.time.time_step > stable_step)
@@ -252,7 +254,8 @@ namespace rbc_ifem
   void
   IFEMSimulation::record_flow(const StepReport &report)
   {
-    const FlowMeasures m = fluid.measure();
+    const FlowMeasures m    = fluid.measure();
+    const Tensor<1, 3> held = cells.held_force();
     record.flow_rows.push_back(csv_row(record.time,
                                        m.flow_rate,
                                        m.pressure_drop,
@@ -260,7 +263,10 @@ namespace rbc_ifem
                                        m.divergence_l2,
                                        fluid.get_frame_velocity(),
                                        report.newton_iterations,
-                                       report.linear_iterations));
+                                       report.linear_iterations,
+                                       held[0],
+                                       held[1],
+                                       held[2]));
   }
 
   std::vector<CellShape>
@@ -282,8 +288,13 @@ namespace rbc_ifem
                                            s.deformation_index,
                                            s.centroid[0],
                                            s.volume / cells.reference_volume(c) - 1.,
-                                           s.area / cells.reference_area(c) - 1.));
+                                           s.area / cells.reference_area(c) - 1.,
+                                           s.taylor_deformation,
+                                           s.inclination));
       }
+    if (domain.kind == FlowDomain::Kind::shear_box)
+      record.shear_history.push_back(
+        {{record.time, shapes[0].taylor_deformation, shapes[0].inclination}});
     return shapes;
   }
 
@@ -322,12 +333,19 @@ namespace rbc_ifem
     };
     write("flow.csv",
           "time,flow_rate,pressure_drop,max_velocity,divergence_l2,frame_velocity,"
-          "newton_iterations,linear_iterations",
+          "newton_iterations,linear_iterations,held_force_x,held_force_y,held_force_z",
           record.flow_rows);
     write("cells.csv",
           "time,cell,x,y,z,area,volume,axial_length,max_radius,deformation_index,frame_x,"
-          "volume_change,area_change",
+          "volume_change,area_change,taylor_deformation,inclination",
           record.cell_rows);
+    if (domain.kind == FlowDomain::Kind::shear_box)
+      {
+        std::vector<std::string> rows;
+        for (const auto &[time, deformation, inclination] : record.shear_history)
+          rows.push_back(csv_row(time, deformation, inclination / numbers::PI));
+        write("shear.csv", "time,taylor_deformation,inclination_over_pi", rows);
+      }
     if (parameters.immersed.diffusion_interval > 0)
       {
         std::string header = "time,dm_total";
@@ -411,13 +429,20 @@ namespace rbc_ifem
                         parameters.output_directory + ".");
   }
 
+  const RunRecord &
+  IFEMSimulation::run_record() const
+  {
+    return record;
+  }
+
   void
   IFEMSimulation::run(const ParameterHandler &prm)
   {
     const ImmersedParameters &immersed = parameters.immersed;
     const TimeParameters &    time     = parameters.time;
-    pcout << "rbc-ifem: experiment 'flow' with immersed cells (" << parameters.fluid.model
-          << ") on " << Utilities::MPI::n_mpi_processes(communicator) << " rank(s)" << std::endl;
+    const bool box = domain.kind == FlowDomain::Kind::shear_box;
+    pcout << "rbc-ifem: " << (box ? "a capsule in the shear box" : "experiment 'flow' with immersed cells")
+          << " (" << parameters.fluid.model << ") on " << Utilities::MPI::n_mpi_processes(communicator) << " rank(s)" << std::endl;
     setup();
     pcout << "  fluid mesh: " << triangulation.n_active_cells() << " cells, "
           << fluid.get_dof_handler().n_dofs() << " DoFs" << std::endl;
@@ -472,6 +497,8 @@ namespace rbc_ifem
         const CellShape shape = (output ? record_shapes() : cells.shapes())[0];
         progress << "; cell 0: volume change " << shape.volume / cells.reference_volume(0) - 1.
                  << ", deformation index " << shape.deformation_index;
+        if (box)
+          progress << ", Taylor deformation " << shape.taylor_deformation;
         if (output)
           {
             write_fields();
@@ -487,10 +514,9 @@ namespace rbc_ifem
     pcout << "  " << n_run << " steps in " << clock.wall_time() << " s, "
           << clock.wall_time() / std::max(1u, n_run) << " s per step" << std::endl;
     timer.print_summary();
-    pcout << "  wrote " << directory
-          << "/: parameters.prm, flow.csv, cells.csv, dm.csv, flow.pvd, cell_*.pvd, "
-             "diffusion.pvd, diffusion_membranes.pvd, timing.csv"
-          << std::endl;
+    pcout << "  wrote " << directory << "/: parameters.prm, flow.csv, cells.csv, "
+          << (box ? "shear.csv" : "dm.csv, diffusion.pvd, diffusion_membranes.pvd")
+          << ", flow.pvd, cell_*.pvd, timing.csv" << std::endl;
     pcout << "  peak memory: " << peak_memory_mb(communicator) << " MB (largest over ranks)"
           << std::endl;
   }

@@ -38,8 +38,8 @@ namespace rbc_ifem
                                    std::to_string(points[i][0]) + ", " +
                                    std::to_string(points[i][1]) + ", " +
                                    std::to_string(points[i][2]) +
-                                   ") µm lies outside the fluid domain: a cell has left the "
-                                   "capillary or touched its wall.");
+                                   ") µm lies outside the fluid domain: a cell has left it "
+                                   "or touched its wall.");
         cell_hints[i] = cell;
         if (cell->is_locally_owned())
           particles.insert_particle(points[i], reference, i, cell);

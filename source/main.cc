@@ -13,6 +13,7 @@
 #include <rbc_ifem/ifem_simulation.h>
 #include <rbc_ifem/input_error.h>
 #include <rbc_ifem/parameters.h>
+#include <rbc_ifem/shear_experiment.h>
 #include <rbc_ifem/solver_failure.h>
 #include <rbc_ifem/stretching_experiment.h>
 
@@ -53,12 +54,14 @@ namespace
     read_parameters(filename, prm, parameters);
     // Patterns::Selection admits only the experiments that exist.
     if (parameters.experiment == "flow" && parameters.immersed.enabled)
-      IFEMSimulation(parameters, communicator).run(prm);
+      IFEMSimulation(parameters, communicator, FlowDomain::capillary(parameters)).run(prm);
     else if (parameters.experiment == "flow")
       FlowExperiment(parameters, communicator).run(prm);
     else if (parameters.experiment == "diffusion" || parameters.experiment == "layouts" ||
              parameters.experiment == "mesh convergence")
       DiffusionExperiment(parameters, communicator).run(prm);
+    else if (parameters.experiment == "shear")
+      ShearExperiment(parameters, communicator).run(prm);
     else if (parameters.experiment == "stretching")
       StretchingExperiment(parameters, communicator).run(prm);
     else

@@ -141,6 +141,12 @@ namespace rbc_ifem
   CellParameters::declare(ParameterHandler &prm)
   {
     prm.enter_subsection("Cells");
+    prm.declare_entry("Shape",
+                      "biconcave",
+                      Patterns::Selection("biconcave|sphere"),
+                      "Reference shape of every cell: biconcave, the Evans-Fung "
+                      "red cell; sphere, a spherical capsule of the same "
+                      "Diameter (the validation runs, doc/validation.md).");
     prm.declare_entry("Diameter",
                       "7.5",
                       Patterns::Double(0.),
@@ -166,6 +172,7 @@ namespace rbc_ifem
   CellParameters::parse(ParameterHandler &prm)
   {
     prm.enter_subsection("Cells");
+    shape               = prm.get("Shape");
     diameter            = prm.get_double("Diameter");
     surface_refinements = prm.get_integer("Surface refinements");
     const std::string axis_text = prm.get("Axis");
@@ -421,11 +428,11 @@ namespace rbc_ifem
     prm.leave_subsection();
     if (!(shear_modulus > 0.))
       throw InputError("Membrane/Shear modulus", to_string(shear_modulus), "it must be > 0 pN/µm.");
-    if (law == "neo-Hookean" && !(area_dilation_modulus > 3. * shear_modulus))
+    if (law == "neo-Hookean" && !(area_dilation_modulus >= 3. * shear_modulus))
       throw InputError("Membrane/Area dilation modulus",
                        to_string(area_dilation_modulus),
-                       "the neo-Hookean law needs K > 3 G = " + to_string(3. * shear_modulus) +
-                         " pN/µm (its C2 = K - 3G).");
+                       "the neo-Hookean law needs K ≥ 3 G = " + to_string(3. * shear_modulus) +
+                         " pN/µm (its C2 = K - 3G; K = 3G is the classical thin-shell law).");
     if (law == "Skalak" && !(area_dilation_modulus > shear_modulus))
       throw InputError("Membrane/Area dilation modulus",
                        to_string(area_dilation_modulus),
@@ -484,6 +491,15 @@ namespace rbc_ifem
                       "farther than this fraction of the fluid mesh size in "
                       "one step (the explicit coupling is then unstable or "
                       "inaccurate: reduce Time/Time step).");
+    prm.declare_entry("Tether stiffness",
+                      "0",
+                      Patterns::Double(0.),
+                      "0: the cells are free. > 0: every membrane point is "
+                      "held at its starting position by a spring of this "
+                      "stiffness [pN/µm], so the cells stay put and flow.csv's "
+                      "held_force_x/y/z is the total force that holds them, "
+                      "the drag's opposite (the held sphere of "
+                      "doc/validation.md). Needs Follow cells = false.");
     prm.leave_subsection();
   }
 
@@ -498,7 +514,13 @@ namespace rbc_ifem
     resume                = prm.get_bool("Resume");
     max_step_displacement = prm.get_double("Maximum step displacement");
     progress_interval     = prm.get_integer("Progress interval");
+    tether_stiffness      = prm.get_double("Tether stiffness");
     prm.leave_subsection();
+    if (tether_stiffness > 0. && follow_cells)
+      throw InputError("Immersed cells/Follow cells",
+                       "true",
+                       "held cells (Immersed cells/Tether stiffness = " + to_string(tether_stiffness) +
+                         " pN/µm) need a frame at rest: set Follow cells = false.");
     if (!(max_step_displacement > 0.))
       throw InputError("Immersed cells/Maximum step displacement",
                        to_string(max_step_displacement),
@@ -537,6 +559,104 @@ namespace rbc_ifem
                       "L-BFGS iterations allowed per force step before the "
                       "run stops.");
     prm.leave_subsection();
+  }
+
+  void
+  ShearParameters::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Shear");
+    prm.declare_entry("Shear rate",
+                      "100",
+                      Patterns::Double(0.),
+                      "Experiment 'shear': the rate γ̇ of the simple shear "
+                      "v = (γ̇ y, 0, 0) the box walls impose [1/s]. Results "
+                      "depend on it only through the capillary number.");
+    prm.declare_entry("Capillary numbers",
+                      "0.0125, 0.025, 0.05, 0.1, 0.2",
+                      Patterns::List(Patterns::Double(0.), 1),
+                      "One run per Ca = μ a γ̇ / G, a the capsule radius "
+                      "(Cells/Diameter / 2) and G the membrane's shear "
+                      "modulus: every modulus of subsection Membrane is "
+                      "scaled by the same factor to give this G, so their "
+                      "ratios are kept.");
+    prm.declare_entry("Box size",
+                      "24, 24, 24",
+                      Patterns::List(Patterns::Double(0.), 3, 3, ","),
+                      "Length (x, the flow direction; the ends x = ±L/2 are "
+                      "open), height (y, between the moving walls) and width "
+                      "(z, walls moving with the shear) of the box, centred "
+                      "on the capsule [µm]. Each must be a multiple of "
+                      "Cells/Diameter, the coarse mesh's cell size.");
+    prm.declare_entry("Total strain",
+                      "4",
+                      Patterns::Double(0.),
+                      "Each run lasts until γ̇ t reaches this.");
+    prm.declare_entry("Averaging strain",
+                      "0.5",
+                      Patterns::Double(0.),
+                      "The steady deformation is the mean over the steadiest "
+                      "window of this length in γ̇ t: the one over which D "
+                      "changes least. Without bending stiffness the membrane "
+                      "of a capsule at small Ca wrinkles late in a run and D "
+                      "creeps up (doc/validation.md); the window finds the "
+                      "plateau before that.");
+    prm.declare_entry("Output strain interval",
+                      "0.25",
+                      Patterns::Double(0.),
+                      "A shear.csv row, a cells.csv row and the VTU files "
+                      "every γ̇ t of this length.");
+    prm.declare_entry("Time step fraction",
+                      "0.5",
+                      Patterns::Double(0., 1.),
+                      "Δt of each run as a fraction of its explicit-coupling "
+                      "time step limit (doc/ifem.md), which scales with 1/G: "
+                      "small Ca take more steps. Time/Time step is not used.");
+    prm.leave_subsection();
+  }
+
+  void
+  ShearParameters::parse(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Shear");
+    shear_rate = prm.get_double("Shear rate");
+    capillary_numbers =
+      Utilities::string_to_double(Utilities::split_string_list(prm.get("Capillary numbers")));
+    const std::vector<double> size =
+      Utilities::string_to_double(Utilities::split_string_list(prm.get("Box size")));
+    for (unsigned int d = 0; d < 3; ++d)
+      box[d] = size[d];
+    strain             = prm.get_double("Total strain");
+    averaging_strain   = prm.get_double("Averaging strain");
+    output_strain      = prm.get_double("Output strain interval");
+    time_step_fraction = prm.get_double("Time step fraction");
+    prm.leave_subsection();
+  }
+
+  void
+  ShearParameters::validate(const CellParameters &cells) const
+  {
+    require_positive("Cells/Diameter", cells.diameter);
+    require_positive("Shear/Shear rate", shear_rate);
+    require_positive("Shear/Total strain", strain);
+    require_positive("Shear/Output strain interval", output_strain);
+    require_positive("Shear/Time step fraction", time_step_fraction);
+    for (const double ca : capillary_numbers)
+      require_positive("Shear/Capillary numbers", ca);
+    if (!(averaging_strain > 0. && averaging_strain < strain))
+      throw InputError("Shear/Averaging strain",
+                       to_string(averaging_strain),
+                       "it must be > 0 and below Shear/Total strain = " + to_string(strain) + ".");
+    const char *names[] = {"length", "height", "width"};
+    for (unsigned int d = 0; d < 3; ++d)
+      {
+        const double cells_across = box[d] / cells.diameter;
+        if (!(cells_across >= 2. && std::abs(cells_across - std::round(cells_across)) < 1e-6))
+          throw InputError("Shear/Box size",
+                           to_string(box[0]) + ", " + to_string(box[1]) + ", " + to_string(box[2]),
+                           std::string("the box ") + names[d] +
+                             " must be a multiple of Cells/Diameter = " + to_string(cells.diameter) +
+                             " µm, at least twice it, so that the capsule fits.");
+      }
   }
 
   void
@@ -722,7 +842,8 @@ namespace rbc_ifem
   {
     prm.declare_entry("Experiment",
                       "geometry",
-                      Patterns::Selection("geometry|diffusion|layouts|mesh convergence|flow|stretching"),
+                      Patterns::Selection(
+                        "geometry|diffusion|layouts|mesh convergence|flow|stretching|shear"),
                       "What to run. geometry: build the fluid and diffusion "
                       "meshes and the cell layout, and write them out. "
                       "diffusion: steady CO uptake of the layout (dm.csv, "
@@ -736,7 +857,9 @@ namespace rbc_ifem
                       "(cells.csv, dm.csv, VTU of the membranes). "
                       "stretching: one cell pulled by two beads with forces "
                       "up to Stretching/Maximum force (stretch.csv, VTU of "
-                      "each equilibrium).");
+                      "each equilibrium). shear: a spherical capsule in "
+                      "simple shear for each Shear/Capillary numbers "
+                      "(shear.csv per run, shear_summary.csv).");
     prm.declare_entry("Output directory",
                       "output/run",
                       Patterns::DirectoryName(),
@@ -750,6 +873,7 @@ namespace rbc_ifem
     MembraneParameters::declare(prm);
     ImmersedParameters::declare(prm);
     StretchingParameters::declare(prm);
+    ShearParameters::declare(prm);
     DiffusionParameters::declare(prm);
     LayoutStudyParameters::declare(prm);
     MeshConvergenceParameters::declare(prm);
@@ -775,11 +899,16 @@ namespace rbc_ifem
     membrane.parse(prm);
     immersed.parse(prm);
     stretching.parse(prm);
+    shear.parse(prm);
     diffusion.parse(prm);
     layout_study.parse(prm);
     mesh_convergence.parse(prm);
     geometry.validate();
-    cells.validate(geometry);
+    // The shear box replaces the capillary.
+    if (experiment == "shear")
+      shear.validate(cells);
+    else
+      cells.validate(geometry);
     if (experiment == "flow" && immersed.enabled && layout.n_cells == 0)
       throw InputError("Layout/Number of cells",
                        "0",

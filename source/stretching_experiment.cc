@@ -68,7 +68,7 @@ namespace rbc_ifem
     TimerOutput         timer(MPI_COMM_SELF, pcout, TimerOutput::never, TimerOutput::wall_times);
     Triangulation<2, 3> surface;
     create_cell_surface(surface,
-                        EvansFungShape(parameters.cells.diameter),
+                        EvansFungShape::named(parameters.cells.shape, parameters.cells.diameter),
                         CellPlacement{Point<3>(), Tensor<1, 3>({0., 0., 1.})},
                         parameters.cells.surface_refinements);
     const Membrane       membrane(surface, parameters.membrane);

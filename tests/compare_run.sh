@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Usage: compare_run.sh [-r TOLERANCE] [-n RANKS -m MPIEXEC] RBC_IFEM PRM EXPECTED_DIR NUMDIFF
+# Usage: compare_run.sh [-r TOLERANCE] [-n RANKS -m MPIEXEC] [-b FILE:COLUMN:LOW:HIGH]...
+#                       RBC_IFEM PRM EXPECTED_DIR NUMDIFF
 #
 # Runs an experiment (on RANKS MPI ranks with -n) in an empty directory and
 # compares each file stored in EXPECTED_DIR with the run's file of that name
@@ -8,16 +9,20 @@
 # number of ranks and the memory used. For a CSV file only the columns
 # named in the stored file's header are compared, so a stored file can leave
 # out columns that legitimately differ (iteration counts across rank counts).
+# Each -b checks that COLUMN of the last row of the run's CSV FILE (in the
+# output directory) lies in [LOW, HIGH]: a band around a published value.
 set -u
 source "$(dirname "$0")/script_setup.sh"
 tolerance=1e-8
 ranks=
 mpiexec=
-while getopts "r:n:m:" option; do
+bands=()
+while getopts "r:n:m:b:" option; do
   case $option in
     r) tolerance=$OPTARG ;;
     n) ranks=$OPTARG ;;
     m) mpiexec=$OPTARG ;;
+    b) bands+=("$OPTARG") ;;
     *) exit 2 ;;
   esac
 done
@@ -64,4 +69,16 @@ for reference in "$expected"/*; do
   fi
 done
 [ $failed -eq 0 ] && echo "ok: matches $expected (relative tolerance $tolerance)"
+
+for band in "${bands[@]}"; do
+  IFS=: read -r file name low high <<<"$band"
+  value=$(awk -F, -v name="$name" 'FNR == 1 { for (i = 1; i <= NF; ++i) if ($i == name) c = i; next }
+                                    { v = $c } END { print v }' "$directory/$file")
+  if awk -v v="$value" -v lo="$low" -v hi="$high" 'BEGIN { exit !(v != "" && v >= lo && v <= hi) }'; then
+    echo "ok: $file $name = $value lies in [$low, $high]"
+  else
+    echo "FAILED: $file $name = $value, outside [$low, $high]"
+    failed=1
+  fi
+done
 exit $failed

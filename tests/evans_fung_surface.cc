@@ -7,6 +7,7 @@
 #include <rbc_ifem/cell_surface.h>
 
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/grid/grid_tools.h>
 
 #include "check.h"
 
@@ -98,5 +99,34 @@ main()
       check.at_most("relative area error at 5 refinements", area_error, degree == 1 ? 2e-3 : 5e-7);
       check.at_most("relative volume error at 5 refinements", volume_error, degree == 1 ? 2e-3 : 5e-7);
     }
+
+  // The sphere of the family (a0 = 2, a1 = a2 = 0), stretched to the
+  // ellipsoid of semi-axes 4, 2, 1 µm and turned by 30° about z: its second
+  // moment is V/5 Q diag(16, 4, 1) Qᵀ, so in the x-y plane L = 4, B = 2,
+  // D = 1/3 and the long axis is inclined by 30°.
+  {
+    const EvansFungShape sphere(2., EvansFungShape::sphere);
+    check.near("unit sphere: exact area", sphere.exact_area(), 4. * numbers::PI, 1e-12);
+    check.near("unit sphere: exact volume", sphere.exact_volume(), 4. * numbers::PI / 3., 1e-12);
+
+    Triangulation<2, 3> surface;
+    create_cell_surface(surface, sphere, CellPlacement{Point<3>(), Tensor<1, 3>({0., 0., 1.})}, 5);
+    const double angle = numbers::PI / 6.;
+    GridTools::transform(
+      [angle](const Point<3> &p) {
+        const Point<3> e(4. * p[0], 2. * p[1], p[2]);
+        return Point<3>(std::cos(angle) * e[0] - std::sin(angle) * e[1],
+                        std::sin(angle) * e[0] + std::cos(angle) * e[1],
+                        e[2]);
+      },
+      surface);
+    surface.set_all_manifold_ids(numbers::flat_manifold_id);
+    const SurfaceMeasures   m       = measure_surface(surface, MappingQ<2, 3>(1));
+    const ShearPlaneEllipse ellipse = shear_plane_ellipse(m.second_moment);
+    check.near("ellipsoid: volume (bilinear mesh)", m.volume, 4. * numbers::PI / 3. * 8., 0.05);
+    check.near("ellipsoid: second moment zz / (V/5)", m.second_moment[2][2] / (m.volume / 5.), 1., 2e-3);
+    check.near("ellipsoid: Taylor deformation (L - B)/(L + B)", ellipse.taylor_deformation, 1. / 3., 1e-3);
+    check.near("ellipsoid: inclination [rad]", ellipse.inclination, angle, 1e-3);
+  }
   return check.exit_code();
 }

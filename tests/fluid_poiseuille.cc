@@ -42,7 +42,8 @@ namespace
       , timer(MPI_COMM_WORLD, std::cout, TimerOutput::never, TimerOutput::wall_times)
     {
       create_fluid_mesh(triangulation, geometry, level);
-      fluid = std::make_unique<FluidProblem>(triangulation, f, geometry, time_step, timer);
+      fluid = std::make_unique<FluidProblem>(
+        triangulation, f, FlowDrive::capillary(f, geometry), time_step, timer);
       fluid->setup();
     }
 

@@ -44,7 +44,8 @@ namespace
       create_fluid_mesh(triangulation, geometry, 1);
       FluidParameters f;
       f.linear_tolerance = 1e-10;
-      fluid = std::make_unique<FluidProblem>(triangulation, f, geometry, time_step, timer);
+      fluid = std::make_unique<FluidProblem>(
+        triangulation, f, FlowDrive::capillary(f, geometry), time_step, timer);
       fluid->setup();
     }
 

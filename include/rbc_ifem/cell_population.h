@@ -31,6 +31,11 @@ namespace rbc_ifem
     /// (L - 2r)/(L + 2r) with L the axial length and r the largest radius:
     /// -0.56 for the biconcave disc facing the flow, growing as it folds.
     double deformation_index = 0.;
+    /// Taylor deformation (L - B)/(L + B) in the x-y plane, the shear plane
+    /// of Experiment = shear (shear_plane_ellipse()).
+    double taylor_deformation = 0.;
+    /// Angle of L's axis from the x axis, in (-π/2, π/2] [rad].
+    double inclination = 0.;
   };
 
   /**
@@ -57,11 +62,22 @@ namespace rbc_ifem
     points() const;
 
     /**
-     * F = -∂E/∂x at every point [pN] from each cell's energy; fills the
-     * per-DoF forces of every cell for output (dof_forces()).
+     * Hold every point at its starting position X by a spring of
+     * @p stiffness k [pN/µm]: compute_forces() adds -k (x - X).
+     */
+    void
+    hold(const double stiffness);
+
+    /**
+     * F = -∂E/∂x at every point [pN] from each cell's energy, plus the
+     * springs of hold(); fills the per-DoF forces of every cell for output.
      */
     std::vector<Tensor<1, 3>>
     compute_forces();
+
+    /// The springs' total force on the cells at the last compute_forces() [pN].
+    Tensor<1, 3>
+    held_force() const;
 
     /// Move every point by Δt v: the last of the six steps.
     void
@@ -113,6 +129,8 @@ namespace rbc_ifem
     std::vector<Vector<double>>            x;
     std::vector<Vector<double>>            forces;
     unsigned int                           n_membrane_points = 0;
+    double                                 tether_stiffness  = 0.;
+    Tensor<1, 3>                           total_tether_force;
   };
 } // namespace rbc_ifem
 

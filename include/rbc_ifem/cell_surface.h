@@ -33,16 +33,36 @@ namespace rbc_ifem
     double   area = 0.;
     double   volume = 0.;  ///< enclosed volume
     Point<3> centroid;     ///< centroid of the enclosed volume
+    /// ∫ (x - centroid) ⊗ (x - centroid) dV over the enclosed volume [µm⁵]:
+    /// V a_i²/5 on the axes of an ellipsoid with semi-axes a_i.
+    Tensor<2, 3> second_moment;
   };
 
   /**
    * Area, enclosed volume and volume centroid of a closed, outward oriented
-   * surface mesh, by the divergence theorem: V = 1/3 ∫ (x-c)·n dA and
-   * ∫_V x_i dV = 1/2 ∫ x_i² n_i dA, on the given @p mapping.
+   * surface mesh, by the divergence theorem: V = 1/3 ∫ (x-c)·n dA,
+   * ∫_V x_i dV = 1/2 ∫ x_i² n_i dA and ∫_V x_i x_j dV = 1/5 ∫ x_i x_j x·n dA,
+   * on the given @p mapping.
    */
   SurfaceMeasures
   measure_surface(const Triangulation<2, 3> &surface,
                   const MappingQ<2, 3> &      mapping);
+
+  /// The ellipse of a body's cut by the x-y plane, the shear plane.
+  struct ShearPlaneEllipse
+  {
+    double taylor_deformation = 0.; ///< (L - B)/(L + B)
+    double inclination        = 0.; ///< of L's axis from x, in (-π/2, π/2] [rad]
+  };
+
+  /**
+   * L and B, the largest and smallest semi-axes in the x-y plane of the
+   * ellipsoid with a body's @p second_moment (SurfaceMeasures): an
+   * ellipsoid's is V a_i²/5 on each axis, so the semi-axes in the plane
+   * scale as the square roots of the eigenvalues of its x-y block.
+   */
+  ShearPlaneEllipse
+  shear_plane_ellipse(const Tensor<2, 3> &second_moment);
 
   /// The distances that tell whether cells overlap or touch the wall.
   struct Clearance

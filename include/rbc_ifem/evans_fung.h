@@ -3,6 +3,8 @@
 
 #include <rbc_ifem/cell_placement.h>
 
+#include <array>
+#include <string>
 #include <deal.II/grid/manifold.h>
 #include <deal.II/grid/manifold_lib.h>
 
@@ -18,7 +20,9 @@ namespace rbc_ifem
    *
    *   z(r) = ±0.5 R sqrt(1 - ρ²) (a0 + a1 ρ² + a2 ρ⁴),  ρ = r/R,
    *
-   * with a0 = 0.207, a1 = 2.002, a2 = -1.123 and R half the diameter.
+   * with a0 = 0.207, a1 = 2.002, a2 = -1.123 and R half the diameter for
+   * the red cell (red_cell). The same family holds the sphere of radius R:
+   * a0 = 2, a1 = a2 = 0 (sphere), the capsule of the validation runs.
    *
    * The shape is the image of the unit sphere under the smooth map
    *
@@ -31,11 +35,16 @@ namespace rbc_ifem
   class EvansFungShape
   {
   public:
-    static constexpr double a0 = 0.207;
-    static constexpr double a1 = 2.002;
-    static constexpr double a2 = -1.123;
+    /// The coefficients a0, a1, a2 of a shape of the family.
+    using Coefficients = std::array<double, 3>;
+    static constexpr Coefficients red_cell{{0.207, 2.002, -1.123}};
+    static constexpr Coefficients sphere{{2., 0., 0.}};
 
-    explicit EvansFungShape(const double diameter);
+    explicit EvansFungShape(const double diameter, const Coefficients &coefficients = red_cell);
+
+    /// The shape Cells/Shape names: "biconcave" (red_cell) or "sphere".
+    static EvansFungShape
+    named(const std::string &name, const double diameter);
 
     double
     radius() const;
@@ -92,7 +101,8 @@ namespace rbc_ifem
     double
     maximize_over_surface(const CellPlacement &placement, const Function &f) const;
 
-    const double R;
+    const double       R;
+    const Coefficients a;
   };
 
 

@@ -15,6 +15,7 @@
 #include <deal.II/lac/trilinos_precondition.h>
 
 #include <limits>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -42,6 +43,39 @@ namespace rbc_ifem
 
   private:
     const double mean_speed, frame_velocity, viscosity, radius, length;
+  };
+
+  /**
+   * Simple shear v = (γ̇ y, 0, 0), p = 0: the flow that drives the box of
+   * Experiment = shear (create_shear_box_mesh()). Components v_x, v_y, v_z, p.
+   */
+  class SimpleShearFlow : public Function<3>
+  {
+  public:
+    explicit SimpleShearFlow(const double shear_rate);
+
+    double
+    value(const Point<3> &p, const unsigned int component = 0) const override;
+
+  private:
+    const double shear_rate;
+  };
+
+  /**
+   * What drives a FluidProblem: the velocity prescribed on each Dirichlet
+   * boundary, in the lab frame (a frame moving with U_frame sees it minus
+   * U_frame e_x). Every other boundary is open, do-nothing.
+   */
+  struct FlowDrive
+  {
+    std::map<types::boundary_id, std::shared_ptr<const Function<3>>> dirichlet;
+
+    /// The capillary: no slip on the wall, Poiseuille of mean speed ū at the inlet.
+    static FlowDrive
+    capillary(const FluidParameters &fluid, const GeometryParameters &geometry);
+    /// The shear box: simple shear of rate γ̇ [1/s] on the walls y, z = const.
+    static FlowDrive
+    shear(const double shear_rate);
   };
 
   /// Integral quantities of a flow field, as flow.csv reports them.
@@ -105,9 +139,11 @@ namespace rbc_ifem
    * which solves the linear problem exactly. Navier-Stokes mode reassembles
    * the Jacobian (with convection) and its AMG in every Newton iteration.
    *
-   * Boundary conditions: no slip on the wall, the Poiseuille profile of mean
-   * speed ū at the inlet, both shifted by -U_frame e_x in a frame moving
-   * with U_frame; at the outlet the do-nothing condition μ ∂v/∂n - p n = 0
+   * Boundary conditions (FlowDrive): in the capillary no slip on the wall,
+   * the Poiseuille profile of mean speed ū at the inlet, both shifted by
+   * -U_frame e_x in a frame moving with U_frame; in the shear box simple
+   * shear on the walls. On the open boundaries (the capillary's outlet, the
+   * box's ends) the do-nothing condition μ ∂v/∂n - p n = 0
    * (the gradient form of the viscous term; with constant μ and ∇·v = 0 it
    * equals ∇·(2με(v)) inside the domain, and it admits the fully developed
    * Poiseuille flow with p = 0 at the outlet).
@@ -120,7 +156,7 @@ namespace rbc_ifem
   public:
     FluidProblem(const parallel::shared::Triangulation<3> &triangulation,
                  const FluidParameters &                   parameters,
-                 const GeometryParameters &                geometry,
+                 const FlowDrive &                         drive,
                  const double                              time_step,
                  TimerOutput &                             timer);
 
@@ -192,7 +228,7 @@ namespace rbc_ifem
     setup_dofs();
     void
     setup_matrices();
-    /// Hanging nodes + the Dirichlet values of (ū, U_frame), scaled by @p scale.
+    /// Hanging nodes + the Dirichlet values of the drive in the frame U_frame, scaled by @p scale.
     void
     make_constraints(AffineConstraints<double> &constraints, const double scale) const;
     void
@@ -206,7 +242,7 @@ namespace rbc_ifem
     solve_linear_system();
 
     const FluidParameters    parameters;
-    const GeometryParameters geometry;
+    const FlowDrive          drive;
     double                   time_step;
     const MPI_Comm           communicator;
     TimerOutput &            timer;

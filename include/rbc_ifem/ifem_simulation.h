@@ -2,6 +2,7 @@
 #define rbc_ifem_ifem_simulation_h
 
 #include <rbc_ifem/cell_population.h>
+#include <rbc_ifem/flow_domain.h>
 #include <rbc_ifem/fluid_problem.h>
 #include <rbc_ifem/immersed_coupling.h>
 #include <rbc_ifem/parameters.h>
@@ -10,6 +11,7 @@
 #include <deal.II/base/timer.h>
 #include <deal.II/distributed/shared_tria.h>
 
+#include <array>
 #include <memory>
 #include <string>
 #include <utility>
@@ -17,6 +19,26 @@
 
 namespace rbc_ifem
 {
+  /**
+   * The time step limit of the explicit coupling [s]: a membrane wave of
+   * wavenumber q relaxes in a Stokes fluid at the rate ω = E(q)/(4μq), E(q)
+   * its stiffness per area, (K+G)q² in-plane and κq⁴ in bending; explicit
+   * Euler needs ω Δt < 2. The shortest wave both the membrane points
+   * (spacing s) and the Q2 fluid velocity (node spacing h/2) resolve has
+   * q = π / max(s, h/2). Runs stay stable below about 0.7 of it (doc/ifem.md).
+   */
+  struct CouplingTimeStepLimit
+  {
+    double in_plane = 0.;
+    double bending  = 0.;
+    double limit    = 0.; ///< the smaller of the two
+
+    CouplingTimeStepLimit(const double              viscosity,
+                          const MembraneParameters &membrane,
+                          const double              point_spacing,
+                          const double              mesh_size);
+  };
+
   /**
    * What a flowing run has produced so far and where it stands: the rows of
    * its tables, the records of its .pvd files, the step, the time and how
@@ -32,18 +54,21 @@ namespace rbc_ifem
     std::vector<std::pair<double, std::string>>              fluid_files;
     std::vector<std::vector<std::pair<double, std::string>>> cell_files; ///< per cell
     std::vector<std::pair<double, std::string>>              diffusion_files, flux_files;
+    /// The shear box's capsule: time, Taylor deformation, inclination [rad].
+    std::vector<std::array<double, 3>> shear_history;
 
     template <class Archive>
     void
     serialize(Archive &archive, const unsigned int)
     {
       archive &step &time &frame_offset &flow_rows &cell_rows &dm_rows &fluid_files &cell_files
-        &diffusion_files &flux_files;
+        &diffusion_files &flux_files &shear_history;
     }
   };
 
   /**
-   * Experiment "flow" with Immersed cells/Enabled: red cells carried by the
+   * Experiment "flow" with Immersed cells/Enabled, and each run of
+   * Experiment "shear" (the FlowDomain says which): red cells carried by the
    * plasma, the immersed finite element method of the paper's Sec. 2.2
    * (design.md, "Immersed coupling"). Each time step Δt:
    *
@@ -66,18 +91,27 @@ namespace rbc_ifem
    * membrane VTUs every Time/Output interval steps, and a checkpoint every
    * Checkpoint interval steps, from which Resume continues.
    *
+   * In the shear box the frame stays put and shear.csv records the
+   * capsule's Taylor deformation and inclination (CellShape).
+   *
    * A run that diverges (non-finite forces or fields, a point moving more
    * than Maximum step displacement of the mesh size in one step, a cell
-   * leaving the lumen) stops with SolverFailure, after writing its tables
+   * leaving the fluid domain) stops with SolverFailure, after writing its tables
    * and the last good membranes.
    */
   class IFEMSimulation
   {
   public:
-    IFEMSimulation(const Parameters &parameters, const MPI_Comm communicator);
+    IFEMSimulation(const Parameters &parameters,
+                   const MPI_Comm    communicator,
+                   const FlowDomain &domain);
 
     void
     run(const ParameterHandler &prm);
+
+    /// What the run produced: its tables' rows and the shear history.
+    const RunRecord &
+    run_record() const;
 
   private:
     /// The fluid mesh, refined around the cells, the fluid, the coupling.
@@ -111,6 +145,7 @@ namespace rbc_ifem
 
     const Parameters                   parameters;
     const MPI_Comm                     communicator;
+    const FlowDomain                   domain;
     ConditionalOStream                 pcout;
     mutable TimerOutput                timer;
     parallel::shared::Triangulation<3> triangulation;

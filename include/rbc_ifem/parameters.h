@@ -51,6 +51,7 @@ namespace rbc_ifem
   /// The red cells' reference shape and its surface mesh (subsection "Cells").
   struct CellParameters
   {
+    std::string    shape               = "biconcave"; ///< biconcave | sphere
     double         diameter            = 7.5; ///< Evans-Fung diameter 2R [µm]
     unsigned int   surface_refinements = 3;
     Tensor<1, 3>   axis{{1., 0., 0.}}; ///< symmetry axis, unit length
@@ -146,6 +147,7 @@ namespace rbc_ifem
     bool         resume                  = false; ///< from Output directory/checkpoint.bin
     double       max_step_displacement   = 0.25;  ///< of the fluid mesh size h, per step
     unsigned int progress_interval       = 10;    ///< a progress line every this many steps
+    double       tether_stiffness        = 0.;    ///< springs to the start [pN/µm]; 0: free
 
     static void
     declare(ParameterHandler &prm);
@@ -166,6 +168,30 @@ namespace rbc_ifem
     declare(ParameterHandler &prm);
     void
     parse(ParameterHandler &prm);
+  };
+
+  /**
+   * Experiment "shear" (subsection "Shear"): one spherical capsule in the
+   * middle of a box in simple shear v = (γ̇ y, 0, 0), run once for every
+   * capillary number Ca = μ a γ̇ / G (a = Cells/Diameter / 2).
+   */
+  struct ShearParameters
+  {
+    double              shear_rate = 100.;  ///< γ̇ [1/s]
+    std::vector<double> capillary_numbers{0.0125, 0.025, 0.05, 0.1, 0.2};
+    Tensor<1, 3>        box{{24., 24., 24.}}; ///< length (x), height (y), width (z) [µm]
+    double              strain           = 4.;   ///< run length γ̇ t
+    double              averaging_strain = 0.5;  ///< steady values: means over the steadiest window of this γ̇ t
+    double              output_strain    = 0.25; ///< VTU and shear.csv every γ̇ t
+    double              time_step_fraction = 0.5; ///< of the explicit-coupling limit
+
+    static void
+    declare(ParameterHandler &prm);
+    void
+    parse(ParameterHandler &prm);
+    /// Throws InputError unless the capsule fits and the strains make sense.
+    void
+    validate(const CellParameters &cells) const;
   };
 
   /**
@@ -239,6 +265,7 @@ namespace rbc_ifem
     MembraneParameters        membrane;
     ImmersedParameters        immersed;
     StretchingParameters      stretching;
+    ShearParameters           shear;
     DiffusionParameters       diffusion;
     LayoutStudyParameters     layout_study;
     MeshConvergenceParameters mesh_convergence;

@@ -32,12 +32,13 @@ namespace rbc_ifem
       return s.str();
     }
 
-    /// Throw unless @p value > 0; thicknesses and lengths of zero make no mesh.
+    /// Throw unless @p value > 0 (in @p unit, for the message): thicknesses
+    /// and lengths of zero make no mesh, rates and strains of zero no run.
     void
-    require_positive(const std::string &name, const double value)
+    require_positive(const std::string &name, const double value, const std::string &unit = " µm")
     {
       if (!(value > 0.))
-        throw InputError(name, to_string(value), "it must be > 0 µm.");
+        throw InputError(name, to_string(value), "it must be > 0" + unit + ".");
     }
   } // namespace
 
@@ -636,12 +637,12 @@ namespace rbc_ifem
   ShearParameters::validate(const CellParameters &cells) const
   {
     require_positive("Cells/Diameter", cells.diameter);
-    require_positive("Shear/Shear rate", shear_rate);
-    require_positive("Shear/Total strain", strain);
-    require_positive("Shear/Output strain interval", output_strain);
-    require_positive("Shear/Time step fraction", time_step_fraction);
+    require_positive("Shear/Shear rate", shear_rate, " 1/s");
+    require_positive("Shear/Total strain", strain, "");
+    require_positive("Shear/Output strain interval", output_strain, "");
+    require_positive("Shear/Time step fraction", time_step_fraction, "");
     for (const double ca : capillary_numbers)
-      require_positive("Shear/Capillary numbers", ca);
+      require_positive("Shear/Capillary numbers", ca, "");
     if (!(averaging_strain > 0. && averaging_strain < strain))
       throw InputError("Shear/Averaging strain",
                        to_string(averaging_strain),

@@ -515,8 +515,10 @@ namespace rbc_ifem
           << clock.wall_time() / std::max(1u, n_run) << " s per step" << std::endl;
     timer.print_summary();
     pcout << "  wrote " << directory << "/: parameters.prm, flow.csv, cells.csv, "
-          << (box ? "shear.csv" : "dm.csv, diffusion.pvd, diffusion_membranes.pvd")
-          << ", flow.pvd, cell_*.pvd, timing.csv" << std::endl;
+          << (box ? "shear.csv, " : "")
+          << (immersed.diffusion_interval > 0 ? "dm.csv, diffusion.pvd, diffusion_membranes.pvd, " : "")
+          << (immersed.checkpoint_interval > 0 ? "checkpoint.bin, " : "")
+          << "flow.pvd, cell_*.pvd, timing.csv" << std::endl;
     pcout << "  peak memory: " << peak_memory_mb(communicator) << " MB (largest over ranks)"
           << std::endl;
   }

@@ -1,5 +1,4 @@
 #include <rbc_ifem/capillary_mesh.h>
-#include <rbc_ifem/cell_layout.h>
 #include <rbc_ifem/co_diffusion.h>
 #include <rbc_ifem/diffusion_experiment.h>
 #include <rbc_ifem/ifem_simulation.h>

@@ -12,3 +12,12 @@ benchmark_setup() {
   trap 'rm -rf "$work"' EXIT
   cd "$work"
 }
+
+# Haberman & Sayre (1958) for a rigid sphere of radius λR on the axis of a
+# tube of radius R, as awk functions: the free sphere's velocity over the
+# centre-line velocity in Poiseuille flow, and the drag factor K of a sphere
+# towed through fluid at rest (F = 6πμaU K).
+haberman_sayre='
+  function hs_velocity_ratio(l) { return (1 - 2 / 3 * l^2 - 0.20217 * l^5) / (1 - 0.75857 * l^5) }
+  function hs_drag_factor(l) {
+    return (1 - 0.75857 * l^5) / (1 - 2.1050 * l + 2.0865 * l^3 - 1.7068 * l^5 + 0.72603 * l^6) }'

@@ -41,10 +41,10 @@ for run in "0.3 1" "0.5 1" "0.5 2"; do
   read -r lambda level <<<"$run"
   read -r h velocity _ <<<"$(run "free_$lambda" "$level")"
   read -r _ _ force <<<"$(run "held_$lambda" "$level")"
-  awk -v l="$lambda" -v h="$h" -v u="$velocity" -v f="$force" 'BEGIN {
+  awk -v l="$lambda" -v h="$h" -v u="$velocity" -v f="$force" "$haberman_sayre"'
+  BEGIN {
     uc = 1000; mu = 1.2e-3; a = 5 * l; pi = 3.14159265358979
-    g = (1 - 2 / 3 * l^2 - 0.20217 * l^5) / (1 - 0.75857 * l^5)
-    k = (1 - 0.75857 * l^5) / (1 - 2.1050 * l + 2.0865 * l^3 - 1.7068 * l^5 + 0.72603 * l^6)
+    g = hs_velocity_ratio(l); k = hs_drag_factor(l)
     ratio = u / uc; drag = -f / (6 * pi * mu * a * uc)
     printf "| %s | %s | %.4f | %.4f | %+.1f%% | %.3f | %.3f | %+.1f%% |\n",
            l, h, ratio, g, 100 * (ratio / g - 1), drag, k * g, 100 * (drag / (k * g) - 1) }'

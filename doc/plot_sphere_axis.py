@@ -6,8 +6,8 @@ benchmarks/sphere_towed.sh.
     /usr/bin/python3 doc/plot_sphere_axis.py OUTPUT_DIRECTORY PICTURE.png
 
 Two panels, (a) the towed sphere (walls moving past it at U = 1000 µm/s)
-and (b) the sphere held in Poiseuille flow, each on the two fluid meshes
-(OUTPUT_DIRECTORY/{towed,held}_{1,2}): the velocity u_x on the axis, from
+and (b) the sphere held in Poiseuille flow, each on the fluid meshes the
+benchmark ran (OUTPUT_DIRECTORY/{towed,held}_{1,2,3}): the velocity u_x on the axis, from
 the last flow_*.pvtu, against the distance from the sphere's centre. The
 sphere is held, so the plasma inside it should be at rest. Prints the mean
 u_x over the inner half of the diameter. Needs python3-matplotlib and
@@ -60,8 +60,10 @@ def main(directory, picture):
     for axis, case, title in zip(axes, ("towed", "held"),
                                  ("(a) towed: walls moving past at U = 1000 µm/s",
                                   "(b) held in Poiseuille flow, U_c = 1000 µm/s")):
-        for level, h in ((1, 0.625), (2, 0.3125)):
+        for level, h in ((1, 0.625), (2, 0.3125), (3, 0.15625)):
             run = os.path.join(directory, f"{case}_{level}")
+            if not os.path.isdir(run):
+                continue
             centre, radius = sphere(run)
             x, u = axial_velocity(run, 2 * centre)
             s = (x - centre) / radius

@@ -24,8 +24,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 from vtkmodules.vtkFiltersCore import vtkProbeFilter
 from vtkmodules.vtkFiltersSources import vtkLineSource
-from vtkmodules.vtkIOXML import vtkXMLPUnstructuredGridReader
 from vtkmodules.util.numpy_support import vtk_to_numpy
+
+from vtk_picture import read
 
 SAMPLES = 2001
 
@@ -39,15 +40,13 @@ def sphere(run):
 
 def axial_velocity(run, length):
     """x and u_x at SAMPLES points on the axis, from the run's last flow output."""
-    reader = vtkXMLPUnstructuredGridReader()
-    reader.SetFileName(sorted(glob.glob(os.path.join(run, "flow_*.pvtu")))[-1])
     line = vtkLineSource()
     line.SetPoint1(0., 0., 0.)
     line.SetPoint2(length, 0., 0.)
     line.SetResolution(SAMPLES - 1)
     probe = vtkProbeFilter()
     probe.SetInputConnection(line.GetOutputPort())
-    probe.SetSourceConnection(reader.GetOutputPort())
+    probe.SetSourceData(read(sorted(glob.glob(os.path.join(run, "flow_*.pvtu")))[-1]))
     probe.Update()
     data = probe.GetOutput()
     x = vtk_to_numpy(data.GetPoints().GetData())[:, 0]

@@ -21,3 +21,11 @@ haberman_sayre='
   function hs_velocity_ratio(l) { return (1 - 2 / 3 * l^2 - 0.20217 * l^5) / (1 - 0.75857 * l^5) }
   function hs_drag_factor(l) {
     return (1 - 0.75857 * l^5) / (1 - 2.1050 * l + 2.0865 * l^3 - 1.7068 * l^5 + 0.72603 * l^6) }'
+
+# body_fitted LAMBDA: the body-fitted, axisymmetric solution of the same
+# sphere (sphere-in-tube-reference, built next to the rbc-ifem program) on
+# its finest mesh of 5 refinements, converged to 1e-4 or better: prints K,
+# the held drag factor F/(6πμaU_c) and the free sphere's U/U_c.
+body_fitted() {
+  "$(dirname "$exe")/sphere-in-tube-reference" "$1" 5 | awk -F, 'END { print $5, $6, $7 }'
+}

@@ -140,7 +140,9 @@ namespace rbc_ifem
      * Axisymmetric Stokes flow (μ = 1) on the meridian mesh, Q2-Q1: the
      * operator, assembled without constraints so that its residual at the
      * sphere's unknowns is the force on the sphere, and the solve for given
-     * velocities on the tube's ends and wall and on the sphere.
+     * velocities on the tube's ends and wall and on the sphere. The same
+     * unknowns are prescribed in every problem, only their values differ, so
+     * the constrained operator is factorized once.
      */
     class MeridianStokes
     {
@@ -158,6 +160,7 @@ namespace rbc_ifem
         sparsity_pattern.copy_from(dsp);
         operator_matrix.reinit(sparsity_pattern);
         assemble_operator();
+        factorize_constrained_operator();
       }
 
       /**
@@ -249,11 +252,10 @@ namespace rbc_ifem
        * The velocities on the boundary, u_r = 0 on the axis, and one pressure
        * value pinned: the velocity is prescribed everywhere else, so the
        * pressure is fixed only up to a constant (the data carry no net flux,
-       * so the dropped continuity equation holds anyway). The constrained
-       * rows are replaced by identities and the system is solved directly.
+       * so the dropped continuity equation holds anyway).
        */
-      Vector<double>
-      solve(const Function<2> &end_velocity, const double sphere_speed) const
+      AffineConstraints<double>
+      boundary_constraints(const Function<2> &end_velocity, const double sphere_speed) const
       {
         AffineConstraints<double>        constraints;
         const FEValuesExtractors::Vector velocity(0);
@@ -274,15 +276,17 @@ namespace rbc_ifem
           DoFTools::extract_dofs(dof_handler, fe.component_mask(pressure));
         constraints.add_line(*pressure_dofs.begin());
         constraints.close();
+        return constraints;
+      }
 
-        // The constrained system: the operator with the constrained rows and
-        // columns eliminated, the prescribed values moved to the right.
+      /// The operator with the prescribed rows and columns replaced by the identity, factorized.
+      void
+      factorize_constrained_operator()
+      {
+        const AffineConstraints<double> constraints =
+          boundary_constraints(Functions::ZeroFunction<2>(3), 0.);
         SparseMatrix<double> matrix(sparsity_pattern);
         matrix.copy_from(operator_matrix);
-        Vector<double> prescribed(dof_handler.n_dofs()), rhs(dof_handler.n_dofs());
-        constraints.distribute(prescribed);
-        operator_matrix.vmult(rhs, prescribed);
-        rhs *= -1.;
         for (unsigned int i = 0; i < dof_handler.n_dofs(); ++i)
           if (constraints.is_constrained(i))
             {
@@ -293,13 +297,24 @@ namespace rbc_ifem
                     matrix.set(entry->column(), i, 0.);
                   }
               matrix.set(i, i, 1.);
-              rhs[i] = 0.;
             }
+        constrained_operator.initialize(matrix);
+      }
 
-        SparseDirectUMFPACK direct;
-        direct.initialize(matrix);
-        Vector<double> solution(rhs);
-        direct.solve(solution);
+      /// The flow for the given boundary velocities: the prescribed values moved to the right.
+      Vector<double>
+      solve(const Function<2> &end_velocity, const double sphere_speed) const
+      {
+        const AffineConstraints<double> constraints =
+          boundary_constraints(end_velocity, sphere_speed);
+        Vector<double> prescribed(dof_handler.n_dofs()), solution(dof_handler.n_dofs());
+        constraints.distribute(prescribed);
+        operator_matrix.vmult(solution, prescribed);
+        solution *= -1.;
+        for (unsigned int i = 0; i < dof_handler.n_dofs(); ++i)
+          if (constraints.is_constrained(i))
+            solution[i] = 0.;
+        constrained_operator.solve(solution);
         // The prescribed values: the solve left them zero.
         solution += prescribed;
         return solution;
@@ -311,6 +326,7 @@ namespace rbc_ifem
       DoFHandler<2>        dof_handler;
       SparsityPattern      sparsity_pattern;
       SparseMatrix<double> operator_matrix;
+      SparseDirectUMFPACK  constrained_operator;
     };
   } // namespace
 

@@ -1,5 +1,5 @@
-#include <rbc_ifem/capillary_mesh.h>
-#include <rbc_ifem/input_error.h>
+#include <rbc_ifem/geometry/capillary_mesh.h>
+#include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/parameters.h>
 
 #include <deal.II/base/exceptions.h>

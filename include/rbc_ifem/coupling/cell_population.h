@@ -1,0 +1,137 @@
+#ifndef rbc_ifem_cell_population_h
+#define rbc_ifem_cell_population_h
+
+#include <rbc_ifem/geometry/cell_membranes.h>
+#include <rbc_ifem/geometry/cell_placement.h>
+#include <rbc_ifem/membrane/membrane.h>
+#include <rbc_ifem/parameters.h>
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/lac/vector.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace rbc_ifem
+{
+  using namespace dealii;
+
+  /// Size and shape of one deformed cell, the columns of cells.csv.
+  struct CellShape
+  {
+    Point<3> centroid;           ///< of the enclosed volume [µm]
+    double   area   = 0.;        ///< [µm²]
+    double   volume = 0.;        ///< [µm³]
+    double   axial_length = 0.;  ///< extent along the capillary axis x [µm]
+    double   max_radius   = 0.;  ///< largest distance from the x-parallel line through the centroid [µm]
+    /// (L - 2r)/(L + 2r) with L the axial length and r the largest radius:
+    /// -0.56 for the biconcave disc facing the flow, growing as it folds.
+    double deformation_index = 0.;
+    /// Taylor deformation (L - B)/(L + B) in the x-y plane, the shear plane
+    /// of Experiment = shear (shear_plane_ellipse()).
+    double taylor_deformation = 0.;
+    /// Angle of L's axis from the x axis, in (-π/2, π/2] [rad].
+    double inclination = 0.;
+  };
+
+  /**
+   * The red cells of a flowing run: a Membrane per cell on its reference
+   * (Evans-Fung) mesh, and each cell's current positions x. The membrane
+   * points of the immersed coupling are the nodes of every cell, cell by
+   * cell in Membrane::nodes() order; forces and velocities come and go in
+   * that order.
+   */
+  class CellPopulation
+  {
+  public:
+    CellPopulation(const std::vector<CellPlacement> &placements,
+                   const CellParameters &            cells,
+                   const MembraneParameters &        membrane);
+
+    unsigned int
+    size() const;
+    unsigned int
+    n_points() const;
+
+    /// Every membrane point, cell by cell.
+    std::vector<Point<3>>
+    points() const;
+
+    /**
+     * Hold every point at its starting position X by a spring of
+     * @p stiffness k [pN/µm]: compute_forces() adds -k (x - X).
+     */
+    void
+    hold(const double stiffness);
+
+    /**
+     * F = -∂E/∂x at every point [pN] from each cell's energy, plus the
+     * springs of hold(); fills the per-DoF forces of every cell for output.
+     */
+    std::vector<Tensor<1, 3>>
+    compute_forces();
+
+    /// The springs' total force on the cells at the last compute_forces() [pN].
+    Tensor<1, 3>
+    held_force() const;
+
+    /// Move every point by Δt v: the last of the six steps.
+    void
+    move(const std::vector<Tensor<1, 3>> &velocities, const double time_step);
+
+    /// Size and shape of every cell now.
+    std::vector<CellShape>
+    shapes() const;
+
+    /**
+     * The current surfaces, flat-sided between the nodes, for the CO
+     * diffusion solve (see Membrane::build_surface), and their mapping.
+     */
+    std::vector<std::unique_ptr<Triangulation<2, 3>>>
+    current_surfaces() const;
+    const MappingQ<2, 3> &
+    surface_mapping() const;
+
+    /**
+     * The largest distance between neighbouring membrane points (the
+     * longest cell edge over the degree) in the reference shape [µm].
+     */
+    double
+    point_spacing() const;
+
+    /// The reference area and volume of cell @p c.
+    double
+    reference_area(const unsigned int c) const;
+    double
+    reference_volume(const unsigned int c) const;
+
+    /**
+     * Each cell as NAME_C_CCCC.vtu (rank 0's job: call it there), with the
+     * displacement and the last forces; returns the file names.
+     */
+    std::vector<std::string>
+    write_vtu(const std::string &directory, const std::string &name, const unsigned int counter) const;
+
+    /// The positions of every cell, for a checkpoint.
+    const std::vector<Vector<double>> &
+    positions() const;
+    void
+    set_positions(const std::vector<Vector<double>> &positions);
+
+  private:
+    const CellMembranes                    references;
+    const MappingQ<2, 3>                   flat_mapping;
+    std::vector<std::unique_ptr<Membrane>> membranes;
+    std::vector<Vector<double>>            x;
+    std::vector<Vector<double>>            forces;
+    unsigned int                           n_membrane_points = 0;
+    double                                 tether_stiffness  = 0.;
+    Tensor<1, 3>                           total_tether_force;
+  };
+} // namespace rbc_ifem
+
+#endif

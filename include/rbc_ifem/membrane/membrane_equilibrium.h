@@ -1,0 +1,37 @@
+#ifndef rbc_ifem_membrane_equilibrium_h
+#define rbc_ifem_membrane_equilibrium_h
+
+#include <rbc_ifem/membrane/membrane.h>
+
+#include <deal.II/lac/vector.h>
+
+namespace rbc_ifem
+{
+  using namespace dealii;
+
+  /// How a static solve ended.
+  struct EquilibriumReport
+  {
+    unsigned int   iterations = 0;
+    double         residual   = 0.; ///< largest nodal force imbalance [pN]
+    MembraneEnergy energy;
+  };
+
+  /**
+   * The static equilibrium of a membrane under fixed external nodal forces
+   * f (one entry per DoF, [pN]): the minimum of Π(x) = E(x) - f·x, found
+   * from @p x (updated in place) by L-BFGS (the last 20 steps) with a
+   * backtracking line search on Π. Converged when the largest nodal
+   * residual |F(x) + f| is below @p tolerance [pN]; throws SolverFailure
+   * after @p max_iterations. Rigid motions cost no energy; with balanced
+   * forces they never enter the search directions.
+   */
+  EquilibriumReport
+  find_equilibrium(const Membrane &      membrane,
+                   const Vector<double> &external_forces,
+                   Vector<double> &      x,
+                   const double          tolerance,
+                   const unsigned int    max_iterations);
+} // namespace rbc_ifem
+
+#endif

@@ -1,0 +1,202 @@
+#include <rbc_ifem/base/input_error.h>
+#include <rbc_ifem/base/output.h>
+
+#include <deal.II/base/data_out_base.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/numerics/data_out.h>
+
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <stdexcept>
+
+namespace rbc_ifem
+{
+  DataOutBase::VtkFlags
+  fast_vtk_flags()
+  {
+    DataOutBase::VtkFlags flags;
+    flags.compression_level = DataOutBase::VtkFlags::best_speed;
+    return flags;
+  }
+
+  void
+  write_pvd(const std::string &                               directory,
+            const std::string &                               name,
+            const std::vector<std::pair<double, std::string>> &records,
+            const MPI_Comm                                    communicator)
+  {
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      write_file_atomically(directory + "/" + name + ".pvd", [&](std::ostream &out) {
+        DataOutBase::write_pvd_record(out, records);
+      });
+  }
+
+  void
+  create_output_directory(const std::string &directory, const MPI_Comm communicator)
+  {
+    std::string problem;
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      {
+        std::error_code error;
+        std::filesystem::create_directories(directory, error);
+        if (error)
+          problem = error.message();
+      }
+    problem = Utilities::MPI::broadcast(communicator, problem, 0);
+    if (!problem.empty())
+      throw InputError("Output directory", directory, "it cannot be created: " + problem + ".");
+  }
+
+  void
+  write_file_atomically(const std::string &                        path,
+                        const std::function<void(std::ostream &)> &writer)
+  {
+    const std::string temporary = path + ".part";
+    {
+      std::ofstream out(temporary);
+      writer(out);
+      out.flush();
+      if (!out)
+        throw std::runtime_error("could not write the file '" + path + "'");
+    }
+    std::filesystem::rename(temporary, path);
+  }
+
+  namespace
+  {
+    /// The boundary faces this rank owns, one patch each, with their id.
+    std::vector<DataOutBase::Patch<2, 3>>
+    boundary_patches(const Triangulation<3> &triangulation)
+    {
+      std::vector<DataOutBase::Patch<2, 3>> patches;
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const auto &face : cell->face_iterators())
+            if (face->at_boundary())
+              {
+                DataOutBase::Patch<2, 3> patch;
+                patch.reference_cell = face->reference_cell();
+                for (const unsigned int v : face->vertex_indices())
+                  patch.vertices[v] = face->vertex(v);
+                patch.data.reinit(1, face->n_vertices());
+                for (unsigned int v = 0; v < face->n_vertices(); ++v)
+                  patch.data(0, v) = face->boundary_id();
+                patch.patch_index = patches.size();
+                patches.push_back(patch);
+              }
+      return patches;
+    }
+  } // namespace
+
+  void
+  write_volume_mesh(const Triangulation<3> &triangulation,
+                    const std::string &     directory,
+                    const std::string &     name,
+                    const MPI_Comm          communicator)
+  {
+    Vector<float> material_id(triangulation.n_active_cells());
+    Vector<float> owner(triangulation.n_active_cells());
+    for (const auto &cell : triangulation.active_cell_iterators())
+      {
+        material_id[cell->active_cell_index()] = cell->material_id();
+        owner[cell->active_cell_index()]       = cell->subdomain_id();
+      }
+    DataOut<3> data_out;
+    data_out.attach_triangulation(triangulation);
+    data_out.set_flags(fast_vtk_flags());
+    data_out.add_data_vector(material_id, "material_id", DataOut<3>::type_cell_data);
+    data_out.add_data_vector(owner, "rank", DataOut<3>::type_cell_data);
+    // Curved cells, so the circles look like circles in ParaView.
+    data_out.build_patches(MappingQ<3>(2), 2, DataOut<3>::curved_inner_cells);
+    const std::string pvtu =
+      data_out.write_vtu_with_pvtu_record(directory + "/", name, 0, communicator, 4);
+
+    // The boundary: one piece per rank, joined by a pvtu record on rank 0.
+    const unsigned int rank = Utilities::MPI::this_mpi_process(communicator);
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
+    const auto piece = [&](const unsigned int r) {
+      return name + "_boundary." + Utilities::int_to_string(r, 4) + ".vtu";
+    };
+    const auto patches = boundary_patches(triangulation);
+    write_file_atomically(directory + "/" + piece(rank), [&](std::ostream &out) {
+      DataOutBase::write_vtu(patches, {"boundary_id"}, {}, fast_vtk_flags(), out);
+    });
+
+    if (rank == 0)
+      {
+        std::vector<std::string> pieces;
+        for (unsigned int r = 0; r < n_ranks; ++r)
+          pieces.push_back(piece(r));
+        write_file_atomically(directory + "/" + name + "_boundary.pvtu",
+                              [&](std::ostream &out) {
+                                DataOutBase::write_pvtu_record(
+                                  out, pieces, {"boundary_id"}, {}, fast_vtk_flags());
+                              });
+        write_pvd(directory, name, {{0., pvtu}}, communicator);
+        write_pvd(directory, name + "_boundary", {{0., name + "_boundary.pvtu"}}, communicator);
+      }
+  }
+
+  std::string
+  write_membranes(
+    const std::vector<const Triangulation<2, 3> *> &          surfaces,
+    const MappingQ<2, 3> &                                    mapping,
+    const std::string &                                       directory,
+    const std::string &                                       name,
+    const MPI_Comm                                            communicator,
+    const std::function<void(unsigned int, DataOut<2, 3> &)> &add_fields)
+  {
+    const std::string file = name + ".vtu";
+    if (Utilities::MPI::this_mpi_process(communicator) != 0 || surfaces.empty())
+      return file;
+
+    // One DataOut per membrane; the patches of all go into the first.
+    std::vector<Vector<float>>                  cell_index(surfaces.size());
+    std::vector<std::unique_ptr<DataOut<2, 3>>> outputs;
+    for (unsigned int i = 0; i < surfaces.size(); ++i)
+      {
+        cell_index[i].reinit(surfaces[i]->n_active_cells());
+        cell_index[i] = i;
+        outputs.push_back(std::make_unique<DataOut<2, 3>>());
+        DataOut<2, 3> &data_out = *outputs.back();
+        data_out.attach_triangulation(*surfaces[i]);
+        data_out.add_data_vector(cell_index[i], "cell", DataOut<2, 3>::type_cell_data);
+        if (add_fields)
+          add_fields(i, data_out);
+        data_out.build_patches(mapping,
+                               mapping.get_degree(),
+                               DataOut<2, 3>::curved_inner_cells);
+        if (i > 0)
+          outputs[0]->merge_patches(data_out);
+      }
+    DataOut<2, 3> &all = *outputs[0];
+    all.set_flags(fast_vtk_flags());
+    write_file_atomically(directory + "/" + file, [&](std::ostream &out) { all.write_vtu(out); });
+    return file;
+  }
+
+  double
+  peak_memory_mb(const MPI_Comm communicator)
+  {
+    Utilities::System::MemoryStats memory;
+    Utilities::System::get_memory_stats(memory);
+    return Utilities::MPI::max(memory.VmHWM, communicator) / 1024.;
+  }
+
+  void
+  write_timing(const TimerOutput &timer,
+               const std::string &directory,
+               const MPI_Comm     communicator)
+  {
+    if (Utilities::MPI::this_mpi_process(communicator) != 0)
+      return;
+    const auto wall  = timer.get_summary_data(TimerOutput::total_wall_time);
+    const auto calls = timer.get_summary_data(TimerOutput::n_calls);
+    write_file_atomically(directory + "/timing.csv", [&](std::ostream &out) {
+      out << "section,calls,wall_seconds\n";
+      for (const auto &[section, seconds] : wall)
+        out << '"' << section << "\"," << calls.at(section) << ',' << seconds << '\n';
+    });
+  }
+} // namespace rbc_ifem

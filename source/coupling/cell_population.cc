@@ -1,0 +1,200 @@
+#include <rbc_ifem/coupling/cell_population.h>
+#include <rbc_ifem/geometry/cell_surface.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace rbc_ifem
+{
+  CellPopulation::CellPopulation(const std::vector<CellPlacement> &placements,
+                                 const CellParameters &            cells,
+                                 const MembraneParameters &        membrane)
+    : references(placements,
+                 EvansFungShape::named(cells.shape, cells.diameter),
+                 cells.surface_refinements)
+    , flat_mapping(1)
+  {
+    for (const Triangulation<2, 3> *surface : references.surfaces())
+      {
+        membranes.push_back(std::make_unique<Membrane>(*surface, membrane));
+        x.push_back(membranes.back()->reference_positions());
+        forces.emplace_back(x.back().size());
+        n_membrane_points += membranes.back()->nodes().size();
+      }
+  }
+
+  unsigned int
+  CellPopulation::size() const
+  {
+    return membranes.size();
+  }
+
+  unsigned int
+  CellPopulation::n_points() const
+  {
+    return n_membrane_points;
+  }
+
+  std::vector<Point<3>>
+  CellPopulation::points() const
+  {
+    std::vector<Point<3>> result;
+    result.reserve(n_membrane_points);
+    for (unsigned int c = 0; c < size(); ++c)
+      for (const auto &dofs : membranes[c]->nodes())
+        result.emplace_back(x[c][dofs[0]], x[c][dofs[1]], x[c][dofs[2]]);
+    return result;
+  }
+
+  void
+  CellPopulation::hold(const double stiffness)
+  {
+    tether_stiffness = stiffness;
+  }
+
+  std::vector<Tensor<1, 3>>
+  CellPopulation::compute_forces()
+  {
+    std::vector<Tensor<1, 3>> result;
+    result.reserve(n_membrane_points);
+    total_tether_force = 0.;
+    for (unsigned int c = 0; c < size(); ++c)
+      {
+        membranes[c]->energy_and_forces(x[c], forces[c]);
+        if (tether_stiffness > 0.)
+          {
+            const Vector<double> &X = membranes[c]->reference_positions();
+            for (unsigned int i = 0; i < x[c].size(); ++i)
+              {
+                const double spring = -tether_stiffness * (x[c][i] - X[i]);
+                forces[c][i] += spring;
+                total_tether_force[membranes[c]->component(i)] += spring;
+              }
+          }
+        for (const auto &dofs : membranes[c]->nodes())
+          result.push_back(Tensor<1, 3>({forces[c][dofs[0]], forces[c][dofs[1]], forces[c][dofs[2]]}));
+      }
+    return result;
+  }
+
+  Tensor<1, 3>
+  CellPopulation::held_force() const
+  {
+    return total_tether_force;
+  }
+
+  void
+  CellPopulation::move(const std::vector<Tensor<1, 3>> &velocities, const double time_step)
+  {
+    AssertDimension(velocities.size(), n_membrane_points);
+    auto velocity = velocities.begin();
+    for (unsigned int c = 0; c < size(); ++c)
+      for (const auto &dofs : membranes[c]->nodes())
+        {
+          for (unsigned int d = 0; d < 3; ++d)
+            x[c][dofs[d]] += time_step * (*velocity)[d];
+          ++velocity;
+        }
+  }
+
+  std::vector<CellShape>
+  CellPopulation::shapes() const
+  {
+    std::vector<CellShape> result(size());
+    const auto             surfaces = current_surfaces();
+    for (unsigned int c = 0; c < size(); ++c)
+      {
+        CellShape &shape = result[c];
+        const SurfaceMeasures measures = measure_surface(*surfaces[c], flat_mapping);
+        shape.centroid   = measures.centroid;
+        shape.area       = membranes[c]->area(x[c]);
+        shape.volume     = membranes[c]->volume(x[c]);
+        double x_min = std::numeric_limits<double>::max(), x_max = -x_min;
+        for (const auto &dofs : membranes[c]->nodes())
+          {
+            const Point<3> p(x[c][dofs[0]], x[c][dofs[1]], x[c][dofs[2]]);
+            x_min            = std::min(x_min, p[0]);
+            x_max            = std::max(x_max, p[0]);
+            shape.max_radius = std::max(shape.max_radius,
+                                        std::hypot(p[1] - shape.centroid[1], p[2] - shape.centroid[2]));
+          }
+        shape.axial_length = x_max - x_min;
+        shape.deformation_index =
+          (shape.axial_length - 2. * shape.max_radius) / (shape.axial_length + 2. * shape.max_radius);
+        const ShearPlaneEllipse ellipse = shear_plane_ellipse(measures.second_moment);
+        shape.taylor_deformation        = ellipse.taylor_deformation;
+        shape.inclination               = ellipse.inclination;
+      }
+    return result;
+  }
+
+  std::vector<std::unique_ptr<Triangulation<2, 3>>>
+  CellPopulation::current_surfaces() const
+  {
+    std::vector<std::unique_ptr<Triangulation<2, 3>>> surfaces;
+    for (unsigned int c = 0; c < size(); ++c)
+      {
+        surfaces.push_back(std::make_unique<Triangulation<2, 3>>());
+        membranes[c]->build_surface(x[c], *surfaces.back());
+      }
+    return surfaces;
+  }
+
+  const MappingQ<2, 3> &
+  CellPopulation::surface_mapping() const
+  {
+    return flat_mapping;
+  }
+
+  double
+  CellPopulation::point_spacing() const
+  {
+    double longest_edge = 0.;
+    for (const Triangulation<2, 3> *surface : references.surfaces())
+      for (const auto &cell : surface->active_cell_iterators())
+        for (const unsigned int l : cell->line_indices())
+          longest_edge = std::max(longest_edge, cell->line(l)->diameter());
+    return longest_edge / membranes.front()->get_dof_handler().get_fe().degree;
+  }
+
+  double
+  CellPopulation::reference_area(const unsigned int c) const
+  {
+    return membranes[c]->reference_area();
+  }
+
+  double
+  CellPopulation::reference_volume(const unsigned int c) const
+  {
+    return membranes[c]->reference_volume();
+  }
+
+  std::vector<std::string>
+  CellPopulation::write_vtu(const std::string &directory,
+                            const std::string &name,
+                            const unsigned int counter) const
+  {
+    std::vector<std::string> files;
+    for (unsigned int c = 0; c < size(); ++c)
+      {
+        const std::string file =
+          name + "_" + std::to_string(c) + "_" + Utilities::int_to_string(counter, 4);
+        membranes[c]->write_vtu(x[c], directory, file, {{"force", forces[c]}});
+        files.push_back(file + ".vtu");
+      }
+    return files;
+  }
+
+  const std::vector<Vector<double>> &
+  CellPopulation::positions() const
+  {
+    return x;
+  }
+
+  void
+  CellPopulation::set_positions(const std::vector<Vector<double>> &positions)
+  {
+    AssertDimension(positions.size(), x.size());
+    x = positions;
+  }
+} // namespace rbc_ifem

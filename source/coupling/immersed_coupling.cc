@@ -1,0 +1,128 @@
+#include <rbc_ifem/coupling/immersed_coupling.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/grid/filtered_iterator.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace rbc_ifem
+{
+  ImmersedCoupling::ImmersedCoupling(const parallel::shared::Triangulation<3> &triangulation,
+                                     const Mapping<3> &                        mapping,
+                                     const DoFHandler<3> &                     fluid_dof_handler)
+    : triangulation(triangulation)
+    , dof_handler(fluid_dof_handler)
+    , cache(triangulation, mapping)
+    , particles(triangulation, mapping)
+  {
+    const FiniteElement<3> &fe = dof_handler.get_fe();
+    for (unsigned int k = 0; k < fe.n_dofs_per_cell(); ++k)
+      if (const unsigned int c = fe.system_to_component_index(k).first; c < 3)
+        velocity_shape_functions.emplace_back(k, c);
+  }
+
+  void
+  ImmersedCoupling::place(const std::vector<Point<3>> &points)
+  {
+    particles.clear_particles();
+    cell_hints.resize(points.size());
+    for (unsigned int i = 0; i < points.size(); ++i)
+      {
+        const auto [cell, reference] =
+          GridTools::find_active_cell_around_point(cache, points[i], cell_hints[i]);
+        if (cell == triangulation.end())
+          throw std::runtime_error("membrane point " + std::to_string(i) + " at (" +
+                                   std::to_string(points[i][0]) + ", " +
+                                   std::to_string(points[i][1]) + ", " +
+                                   std::to_string(points[i][2]) +
+                                   ") µm lies outside the fluid domain: a cell has left it "
+                                   "or touched its wall.");
+        cell_hints[i] = cell;
+        if (cell->is_locally_owned())
+          particles.insert_particle(points[i], reference, i, cell);
+      }
+    n_membrane_points = points.size();
+  }
+
+  template <typename CellFunction>
+  void
+  ImmersedCoupling::for_each_particle_cell(const CellFunction &f) const
+  {
+    std::vector<types::global_dof_index> dofs(dof_handler.get_fe().n_dofs_per_cell());
+    // Particles are stored cell by cell: take one cell's at a time.
+    auto particle = particles.begin();
+    while (particle != particles.end())
+      {
+        const auto cell = particle->get_surrounding_cell();
+        const typename DoFHandler<3>::active_cell_iterator dof_cell(*cell, &dof_handler);
+        dof_cell->get_dof_indices(dofs);
+        const auto in_cell = particles.particles_in_cell(cell);
+        f(dofs, in_cell);
+        particle = in_cell.end();
+      }
+  }
+
+  void
+  ImmersedCoupling::spread(const std::vector<Tensor<1, 3>> &   forces,
+                           const AffineConstraints<double> &   constraints,
+                           TrilinosWrappers::MPI::BlockVector &load) const
+  {
+    AssertDimension(forces.size(), n_membrane_points);
+    const FiniteElement<3> &fe = dof_handler.get_fe();
+    Vector<double>          cell_load(fe.n_dofs_per_cell());
+    for_each_particle_cell([&](const auto &dofs, const auto &in_cell) {
+      cell_load = 0.;
+      for (const auto &p : in_cell)
+        for (const auto &[k, c] : velocity_shape_functions)
+          cell_load[k] +=
+            forces[p.get_id()][c] * fe.shape_value_component(k, p.get_reference_location(), c);
+      constraints.distribute_local_to_global(cell_load, dofs, load);
+    });
+    load.compress(VectorOperation::add);
+  }
+
+  std::vector<Tensor<1, 3>>
+  ImmersedCoupling::interpolate(const TrilinosWrappers::MPI::BlockVector &solution) const
+  {
+    // Each point is on one rank; the others add zero.
+    const FiniteElement<3> &fe = dof_handler.get_fe();
+    std::vector<double>     velocity(3 * n_membrane_points, 0.);
+    for_each_particle_cell([&](const auto &dofs, const auto &in_cell) {
+      for (const auto &p : in_cell)
+        for (const auto &[k, c] : velocity_shape_functions)
+          velocity[3 * p.get_id() + c] +=
+            solution(dofs[k]) * fe.shape_value_component(k, p.get_reference_location(), c);
+    });
+    Utilities::MPI::sum(velocity, triangulation.get_communicator(), velocity);
+    std::vector<Tensor<1, 3>> result(n_membrane_points);
+    for (unsigned int i = 0; i < n_membrane_points; ++i)
+      for (unsigned int c = 0; c < 3; ++c)
+        result[i][c] = velocity[3 * i + c];
+    return result;
+  }
+
+  unsigned int
+  ImmersedCoupling::n_points() const
+  {
+    return n_membrane_points;
+  }
+
+  double
+  ImmersedCoupling::mesh_size_at_points() const
+  {
+    // Every rank knows every point's cell: no communication.
+    double h = 0.;
+    for (const auto &cell : cell_hints)
+      h = std::max(h, cell->minimum_vertex_distance());
+    return h;
+  }
+
+  const Particles::ParticleHandler<3> &
+  ImmersedCoupling::get_particle_handler() const
+  {
+    return particles;
+  }
+} // namespace rbc_ifem

@@ -1,0 +1,123 @@
+#include <rbc_ifem/geometry/capillary_mesh.h>
+#include <rbc_ifem/experiments/geometry_experiment.h>
+#include <rbc_ifem/base/input_error.h>
+#include <rbc_ifem/base/output.h>
+
+#include <iomanip>
+#include <sstream>
+
+namespace rbc_ifem
+{
+  GeometryExperiment::GeometryExperiment(const Parameters &parameters,
+                                         const MPI_Comm    communicator)
+    : parameters(parameters)
+    , communicator(communicator)
+    , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
+    , timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times)
+    , layout(parameters.layout, parameters.geometry, parameters.cells)
+    , membranes(layout.placements(),
+                EvansFungShape::named(parameters.cells.shape, parameters.cells.diameter),
+                parameters.cells.surface_refinements)
+    , fluid_mesh(communicator,
+                 Triangulation<3>::none,
+                 false,
+                 parallel::shared::Triangulation<3>::partition_metis)
+    , diffusion_mesh(communicator,
+                     Triangulation<3>::none,
+                     false,
+                     parallel::shared::Triangulation<3>::partition_metis)
+  {}
+
+  void
+  GeometryExperiment::run(const ParameterHandler &prm)
+  {
+    pcout << "rbc-ifem: experiment 'geometry' on "
+          << Utilities::MPI::n_mpi_processes(communicator) << " rank(s)\n"
+          << "  layout: " << parameters.layout.kind << ", "
+          << layout.placements().size() << " of at most " << layout.max_cells()
+          << " cells, cell length along the axis " << layout.cell_length()
+          << " µm" << std::endl;
+
+    report_membranes();
+    create_meshes();
+    write_output(prm);
+    write_timing(timer, parameters.output_directory, communicator);
+
+    pcout << "  peak memory: " << peak_memory_mb(communicator)
+          << " MB (largest over ranks)" << std::endl;
+  }
+
+  void
+  GeometryExperiment::report_membranes() const
+  {
+    TimerOutput::Scope scope(timer, "clearance check");
+    pcout << "  membranes: " << membranes.size() << " x "
+          << (membranes.size() == 0 ? 0 : membranes.surfaces()[0]->n_active_cells())
+          << " quadrilaterals; tube hematocrit " << layout.hematocrit(membranes.volumes())
+          << std::endl;
+    const Clearance clearance =
+      membranes.require_clearance(parameters.geometry.capillary_radius);
+    pcout << "  clearance: nearest membranes " << clearance.min_cell_gap
+          << " µm apart";
+    if (membranes.size() > 1)
+      pcout << " (cells " << clearance.closest_cells.first << " and "
+            << clearance.closest_cells.second << ')';
+    pcout << ", nearest wall " << clearance.min_wall_gap << " µm away" << std::endl;
+  }
+
+  void
+  GeometryExperiment::create_meshes()
+  {
+    const std::vector<Point<3>> points = membranes.vertices();
+    {
+      TimerOutput::Scope scope(timer, "fluid mesh");
+      create_fluid_mesh(fluid_mesh,
+                        parameters.geometry,
+                        parameters.mesh.fluid_global_refinements);
+      refine_near_points(fluid_mesh,
+                         points,
+                         parameters.mesh.band_width,
+                         parameters.mesh.fluid_band_refinements);
+    }
+    {
+      TimerOutput::Scope scope(timer, "diffusion mesh");
+      create_diffusion_mesh(diffusion_mesh,
+                            parameters.geometry,
+                            parameters.mesh.diffusion_global_refinements);
+      refine_near_points(diffusion_mesh,
+                         points,
+                         parameters.mesh.band_width,
+                         parameters.mesh.diffusion_band_refinements);
+    }
+    pcout << "  fluid mesh: " << fluid_mesh.n_active_cells()
+          << " cells, diffusion mesh: " << diffusion_mesh.n_active_cells()
+          << " cells" << std::endl;
+  }
+
+  void
+  GeometryExperiment::write_output(const ParameterHandler &prm) const
+  {
+    TimerOutput::Scope scope(timer, "output");
+    const std::string &directory = parameters.output_directory;
+    create_output_directory(directory, communicator);
+
+    write_volume_mesh(fluid_mesh, directory, "fluid_mesh", communicator);
+    write_volume_mesh(diffusion_mesh, directory, "diffusion_mesh", communicator);
+    const std::string membrane_file =
+      write_membranes(membranes.surfaces(), membranes.mapping(), directory, "membranes", communicator);
+    write_pvd(directory, "membranes", {{0., membrane_file}}, communicator);
+
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      {
+        write_file_atomically(directory + "/parameters.prm", [&](std::ostream &out) {
+          prm.print_parameters(out, ParameterHandler::PRM);
+        });
+        write_file_atomically(directory + "/cells.csv",
+                              [&](std::ostream &out) { membranes.write_table(out); });
+      }
+    pcout << "  wrote " << directory << "/: parameters.prm, cells.csv, "
+          << "fluid_mesh.pvd, diffusion_mesh.pvd (+ _boundary), membranes.pvd, "
+          << "timing.csv" << std::endl;
+  }
+
+} // namespace rbc_ifem

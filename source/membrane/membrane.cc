@@ -1,0 +1,457 @@
+#include <rbc_ifem/membrane/membrane.h>
+#include <rbc_ifem/base/output.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/differentiation/ad/sacado_product_types.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/mapping_fe_field.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/numerics/data_out.h>
+
+#include <Sacado.hpp>
+
+#include <cmath>
+#include <map>
+
+// deal.II 9.4 knows the product types of Sacado's DFad, not of the
+// fixed-length SFad the membrane forces use: declare them, so that Tensor
+// arithmetic on SFad (cross products, contractions) gives SFad.
+DEAL_II_NAMESPACE_OPEN
+namespace internal
+{
+  template <typename T, int N>
+  struct ProductTypeImpl<Sacado::Fad::SFad<T, N>, double>
+  {
+    using type = Sacado::Fad::SFad<T, N>;
+  };
+
+  template <typename T, int N>
+  struct ProductTypeImpl<double, Sacado::Fad::SFad<T, N>>
+  {
+    using type = Sacado::Fad::SFad<T, N>;
+  };
+
+  template <typename T, int N>
+  struct ProductTypeImpl<Sacado::Fad::SFad<T, N>, Sacado::Fad::SFad<T, N>>
+  {
+    using type = Sacado::Fad::SFad<T, N>;
+  };
+} // namespace internal
+
+template <typename T, int N>
+struct EnableIfScalar<Sacado::Fad::SFad<T, N>>
+{
+  using type = Sacado::Fad::SFad<T, N>;
+};
+DEAL_II_NAMESPACE_CLOSE
+
+namespace rbc_ifem
+{
+  /// What one cell contributes, at positions of type Number.
+  template <typename Number>
+  struct Membrane::CellTerms
+  {
+    Number                           in_plane = 0.;
+    Number                           area     = 0.;
+    Number                           volume   = 0.;
+    std::vector<Tensor<1, 3, Number>> laplacian; ///< y_a = ∫ ∇_Γ N_a · ∇_Γ x dA
+    std::vector<Number>              mass;      ///< m_a = ∫ N_a dA
+    std::vector<Tensor<1, 3, Number>> normal;    ///< ∫ N_a n dA
+  };
+
+  /// The cell terms summed over the membrane.
+  struct Membrane::Sums
+  {
+    double                    in_plane = 0., area = 0., volume = 0.;
+    std::vector<Tensor<1, 3>> laplacian, normal;
+    std::vector<double>       mass;
+  };
+
+  namespace
+  {
+    /**
+     * W(I1, J) [pN/µm] in terms of I1 = λ1² + λ2² and J = λ1 λ2, the
+     * invariants of the surface Cauchy-Green tensor C = G⁻¹g:
+     * tr C = I1, det C = J².
+     */
+    template <typename Number>
+    Number
+    strain_energy_density(const MembraneParameters &p, const Number &I1, const Number &J)
+    {
+      const double G = p.shear_modulus, K = p.area_dilation_modulus;
+      if (p.law == "Skalak")
+        {
+          const double C      = (K / G - 1.) / 2.;
+          const Number I1s    = I1 - 2.;
+          const Number I2s    = J * J - 1.;
+          return G / 4. * (I1s * I1s + 2. * I1s - 2. * I2s + C * I2s * I2s);
+        }
+      // neo-Hookean: the incompressible thin-shell form, λ3 = 1/(λ1 λ2),
+      // plus the area term; C1 = G/2 and C2 = K - 3G give the small-strain
+      // moduli G and K.
+      const double C1 = G / 2., C2 = K - 3. * G;
+      return C1 * (I1 + 1. / (J * J) - 3.) + C2 / 2. * (J - 1.) * (J - 1.);
+    }
+  } // namespace
+
+  Membrane::Membrane(const Triangulation<2, 3> &reference_mesh,
+                     const MembraneParameters & parameters)
+    : parameters(parameters)
+    , scalar_fe(parameters.degree)
+    , fe(scalar_fe, 3)
+    , dof_handler(reference_mesh)
+    , quadrature(parameters.degree + 2)
+  {
+    dof_handler.distribute_dofs(fe);
+
+    const unsigned int n_q = quadrature.size(), n_a = scalar_fe.n_dofs_per_cell();
+    shape_values.reinit(n_a, n_q);
+    shape_gradients.reinit(n_a, n_q);
+    for (unsigned int a = 0; a < n_a; ++a)
+      for (unsigned int q = 0; q < n_q; ++q)
+        {
+          shape_values(a, q)    = scalar_fe.shape_value(a, quadrature.point(q));
+          shape_gradients(a, q) = scalar_fe.shape_grad(a, quadrature.point(q));
+        }
+
+    // Nodes: numbered by the DoF of their x component.
+    std::vector<int> node_of_dof(dof_handler.n_dofs(), -1);
+    component_of_dof.resize(dof_handler.n_dofs());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+        cell->get_dof_indices(dofs);
+        std::vector<unsigned int> nodes(n_a);
+        for (unsigned int k = 0; k < dofs.size(); ++k)
+          component_of_dof[dofs[k]] = fe.system_to_component_index(k).first;
+        for (unsigned int a = 0; a < n_a; ++a)
+          {
+            const auto first = dofs[fe.component_to_system_index(0, a)];
+            if (node_of_dof[first] < 0)
+              {
+                node_of_dof[first] = n_nodes++;
+                node_dofs.push_back({{first,
+                                      dofs[fe.component_to_system_index(1, a)],
+                                      dofs[fe.component_to_system_index(2, a)]}});
+              }
+            nodes[a] = node_of_dof[first];
+          }
+        cell_dofs.push_back(dofs);
+        cell_nodes.push_back(nodes);
+      }
+
+    // X: the support points of the field, on the curved reference surface.
+    const MappingQ<2, 3>                                  mapping(std::max(2u, parameters.degree));
+    std::map<types::global_dof_index, Point<3>>           support_points;
+    DoFTools::map_dofs_to_support_points(mapping, dof_handler, support_points);
+    reference.reinit(dof_handler.n_dofs());
+    for (const auto &[dof, point] : support_points)
+      reference[dof] = point[component(dof)];
+
+    for (unsigned int c = 0; c < cell_dofs.size(); ++c)
+      {
+        const std::vector<double> X = local_positions(c, reference);
+        reference_metric_inverse.emplace_back(n_q);
+        reference_jacobian.emplace_back(n_q);
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            Tensor<1, 3> tangent[2];
+            for (unsigned int k = 0; k < fe.n_dofs_per_cell(); ++k)
+              {
+                const auto [d, a] = fe.system_to_component_index(k);
+                for (unsigned int alpha = 0; alpha < 2; ++alpha)
+                  tangent[alpha][d] += X[k] * shape_gradients(a, q)[alpha];
+              }
+            Tensor<2, 2> metric;
+            for (unsigned int alpha = 0; alpha < 2; ++alpha)
+              for (unsigned int beta = 0; beta < 2; ++beta)
+                metric[alpha][beta] = tangent[alpha] * tangent[beta];
+            reference_metric_inverse[c][q] = invert(metric);
+            reference_jacobian[c][q]       = std::sqrt(determinant(metric));
+          }
+      }
+    area0   = area(reference);
+    volume0 = volume(reference);
+  }
+
+  const DoFHandler<2, 3> &
+  Membrane::get_dof_handler() const
+  {
+    return dof_handler;
+  }
+
+  const Vector<double> &
+  Membrane::reference_positions() const
+  {
+    return reference;
+  }
+
+  const std::vector<std::array<types::global_dof_index, 3>> &
+  Membrane::nodes() const
+  {
+    return node_dofs;
+  }
+
+  unsigned int
+  Membrane::component(const types::global_dof_index dof) const
+  {
+    return component_of_dof[dof];
+  }
+
+  std::vector<double>
+  Membrane::local_positions(const unsigned int cell, const Vector<double> &x) const
+  {
+    std::vector<double> local(cell_dofs[cell].size());
+    for (unsigned int k = 0; k < local.size(); ++k)
+      local[k] = x[cell_dofs[cell][k]];
+    return local;
+  }
+
+  template <typename Number>
+  Membrane::CellTerms<Number>
+  Membrane::cell_terms(const unsigned int cell, const std::vector<Number> &x) const
+  {
+    using std::sqrt;
+    const unsigned int n_a = scalar_fe.n_dofs_per_cell();
+    CellTerms<Number>  terms;
+    terms.laplacian.resize(n_a);
+    terms.mass.resize(n_a);
+    terms.normal.resize(n_a);
+
+    for (unsigned int q = 0; q < quadrature.size(); ++q)
+      {
+        Tensor<1, 3, Number> position, tangent[2];
+        for (unsigned int k = 0; k < x.size(); ++k)
+          {
+            const auto [d, a] = fe.system_to_component_index(k);
+            position[d] += x[k] * shape_values(a, q);
+            for (unsigned int alpha = 0; alpha < 2; ++alpha)
+              tangent[alpha][d] += x[k] * shape_gradients(a, q)[alpha];
+          }
+        Tensor<2, 2, Number> g;
+        for (unsigned int alpha = 0; alpha < 2; ++alpha)
+          for (unsigned int beta = 0; beta < 2; ++beta)
+            g[alpha][beta] = tangent[alpha] * tangent[beta];
+        const Number               det_g = determinant(g);
+        const Tensor<2, 2, Number> g_inverse = invert(g);
+        const Number               jacobian  = sqrt(det_g);
+        const double               w         = quadrature.weight(q);
+
+        // Stretch invariants: tr(G⁻¹g) = λ1² + λ2², J = λ1λ2 = dA/dA0.
+        const Tensor<2, 2> &G_inverse = reference_metric_inverse[cell][q];
+        Number              I1        = 0.;
+        for (unsigned int alpha = 0; alpha < 2; ++alpha)
+          for (unsigned int beta = 0; beta < 2; ++beta)
+            I1 += G_inverse[alpha][beta] * g[alpha][beta];
+        const Number J = jacobian / reference_jacobian[cell][q];
+        terms.in_plane +=
+          strain_energy_density(parameters, I1, J) * reference_jacobian[cell][q] * w;
+
+        const Number               dA       = jacobian * w;
+        const Tensor<1, 3, Number> normal_dA = cross_product_3d(tangent[0], tangent[1]) * w;
+        terms.area += dA;
+        terms.volume += position * normal_dA / 3.;
+        for (unsigned int a = 0; a < n_a; ++a)
+          {
+            terms.mass[a] += shape_values(a, q) * dA;
+            terms.normal[a] += shape_values(a, q) * normal_dA;
+            // ∇_Γ N_a · ∇_Γ x = g^{αβ} ∂_α N_a ∂_β x
+            for (unsigned int alpha = 0; alpha < 2; ++alpha)
+              for (unsigned int beta = 0; beta < 2; ++beta)
+                {
+                  const Number weight = g_inverse[alpha][beta] * shape_gradients(a, q)[alpha] * dA;
+                  terms.laplacian[a] += weight * tangent[beta];
+                }
+          }
+      }
+    return terms;
+  }
+
+  Membrane::Sums
+  Membrane::sum_cell_terms(const Vector<double> &x) const
+  {
+    Sums sums;
+    sums.laplacian.resize(n_nodes);
+    sums.normal.resize(n_nodes);
+    sums.mass.resize(n_nodes);
+    for (unsigned int c = 0; c < cell_dofs.size(); ++c)
+      {
+        const CellTerms<double> terms = cell_terms(c, local_positions(c, x));
+        sums.in_plane += terms.in_plane;
+        sums.area += terms.area;
+        sums.volume += terms.volume;
+        for (unsigned int a = 0; a < cell_nodes[c].size(); ++a)
+          {
+            const unsigned int i = cell_nodes[c][a];
+            sums.laplacian[i] += terms.laplacian[a];
+            sums.normal[i] += terms.normal[a];
+            sums.mass[i] += terms.mass[a];
+          }
+      }
+    return sums;
+  }
+
+  MembraneEnergy
+  Membrane::energy(const Vector<double> &x) const
+  {
+    Vector<double> no_forces;
+    return energy_and_forces(x, no_forces);
+  }
+
+  MembraneEnergy
+  Membrane::energy_and_forces(const Vector<double> &x, Vector<double> &forces) const
+  {
+    const Sums     sums = sum_cell_terms(x);
+    const double   kappa = parameters.bending_modulus, c0 = parameters.spontaneous_curvature;
+    MembraneEnergy energy;
+    energy.in_plane = sums.in_plane;
+    // The penalties, and their derivatives by the sums A and V. A switched
+    // off penalty is left out, so that open test patches (V0 = 0) work.
+    double d_area = 0., d_volume = 0.;
+    if (parameters.area_penalty > 0.)
+      {
+        energy.area = parameters.area_penalty / 2. * std::pow(sums.area - area0, 2) / area0;
+        d_area      = parameters.area_penalty * (sums.area - area0) / area0;
+      }
+    if (parameters.volume_penalty > 0.)
+      {
+        energy.volume = parameters.volume_penalty / 2. * std::pow(sums.volume - volume0, 2) / volume0;
+        d_volume      = parameters.volume_penalty * (sums.volume - volume0) / volume0;
+      }
+
+    // The bending energy κ/2 Σ m_i |u_i|², u_i = y_i/m_i - c0 ν_i, and its
+    // derivatives by the nodal sums y_i, m_i and w_i = ∫ N_i n dA.
+    std::vector<Tensor<1, 3>> d_laplacian(n_nodes), d_normal(n_nodes);
+    std::vector<double>       d_mass(n_nodes);
+    for (unsigned int i = 0; i < n_nodes; ++i)
+      {
+        const double       m     = sums.mass[i];
+        const double       w     = sums.normal[i].norm();
+        const Tensor<1, 3> nu    = sums.normal[i] / w;
+        const Tensor<1, 3> u     = sums.laplacian[i] / m - c0 * nu;
+        energy.bending += kappa / 2. * m * (u * u);
+        d_laplacian[i] = kappa * u;
+        d_mass[i]      = kappa / 2. * (u * u) - kappa * (u * sums.laplacian[i]) / m;
+        d_normal[i]    = -kappa * c0 * m / w * (u - (u * nu) * nu);
+      }
+    if (forces.size() == 0)
+      return energy;
+
+    // F = -dE/dx: per cell, the derivative of its own energy plus the
+    // nodal and global sums it feeds, weighted by dE/d(sum). The cell's
+    // derivative is taken in forward mode with a Sacado number whose length
+    // (the cell's DoFs) is known at compile time for the degrees in use:
+    // no heap allocation per operation, several times faster than DFad.
+    forces = 0.;
+    const auto subtract_cell_gradients = [&](auto ad_number) {
+      using ADNumber = decltype(ad_number);
+      for (unsigned int c = 0; c < cell_dofs.size(); ++c)
+        {
+          const std::vector<double> values = local_positions(c, x);
+          std::vector<ADNumber>     local(values.size());
+          for (unsigned int k = 0; k < values.size(); ++k)
+            local[k] = ADNumber(values.size(), k, values[k]);
+          const CellTerms<ADNumber> terms = cell_terms(c, local);
+          ADNumber phi = terms.in_plane + d_area * terms.area + d_volume * terms.volume;
+          for (unsigned int a = 0; a < cell_nodes[c].size(); ++a)
+            {
+              const unsigned int i = cell_nodes[c][a];
+              phi += d_laplacian[i] * terms.laplacian[a] + d_mass[i] * terms.mass[a] +
+                     d_normal[i] * terms.normal[a];
+            }
+          for (unsigned int k = 0; k < values.size(); ++k)
+            forces[cell_dofs[c][k]] -= phi.dx(k);
+        }
+    };
+    if (parameters.degree == 1)
+      subtract_cell_gradients(Sacado::Fad::SFad<double, 3 * 4>());
+    else if (parameters.degree == 2)
+      subtract_cell_gradients(Sacado::Fad::SFad<double, 3 * 9>());
+    else
+      subtract_cell_gradients(Sacado::Fad::DFad<double>());
+    return energy;
+  }
+
+  std::vector<double>
+  Membrane::nodal_areas(const Vector<double> &x) const
+  {
+    return sum_cell_terms(x).mass;
+  }
+
+  std::vector<Tensor<1, 3>>
+  Membrane::nodal_vector_areas(const Vector<double> &x) const
+  {
+    return sum_cell_terms(x).normal;
+  }
+
+  double
+  Membrane::area(const Vector<double> &x) const
+  {
+    return sum_cell_terms(x).area;
+  }
+
+  double
+  Membrane::volume(const Vector<double> &x) const
+  {
+    return sum_cell_terms(x).volume;
+  }
+
+  double
+  Membrane::reference_area() const
+  {
+    return area0;
+  }
+
+  double
+  Membrane::reference_volume() const
+  {
+    return volume0;
+  }
+
+  void
+  Membrane::write_vtu(const Vector<double> &                                   x,
+                      const std::string &                                      directory,
+                      const std::string &                                      name,
+                      const std::vector<std::pair<std::string, Vector<double>>> &dof_vectors) const
+  {
+    Vector<double> displacement(x);
+    displacement -= reference;
+    const MappingFEField<2, 3, Vector<double>> mapping(dof_handler, x);
+    const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_field(
+      3, DataComponentInterpretation::component_is_part_of_vector);
+    DataOut<2, 3> data_out;
+    data_out.attach_dof_handler(dof_handler);
+    data_out.add_data_vector(displacement,
+                             std::vector<std::string>(3, "displacement"),
+                             DataOut<2, 3>::type_dof_data,
+                             vector_field);
+    for (const auto &[field_name, values] : dof_vectors)
+      data_out.add_data_vector(values,
+                               std::vector<std::string>(3, field_name),
+                               DataOut<2, 3>::type_dof_data,
+                               vector_field);
+    data_out.build_patches(mapping, std::max(2u, parameters.degree), DataOut<2, 3>::curved_inner_cells);
+    data_out.set_flags(fast_vtk_flags());
+    write_file_atomically(directory + "/" + name + ".vtu",
+                          [&](std::ostream &out) { data_out.write_vtu(out); });
+  }
+
+  void
+  Membrane::build_surface(const Vector<double> &x, Triangulation<2, 3> &surface) const
+  {
+    surface.clear();
+    surface.copy_triangulation(dof_handler.get_triangulation());
+    surface.reset_all_manifolds();
+    surface.set_all_manifold_ids(numbers::flat_manifold_id);
+    // The copy has the same cells in the same order; the DoFs of component
+    // d at a vertex are the d-th vertex DoFs of the FESystem.
+    auto surface_cell = surface.begin_active();
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        for (const unsigned int v : cell->vertex_indices())
+          for (unsigned int d = 0; d < 3; ++d)
+            surface_cell->vertex(v)[d] = x[cell->vertex_dof_index(v, d)];
+        ++surface_cell;
+      }
+  }
+} // namespace rbc_ifem

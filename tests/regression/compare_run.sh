@@ -1,0 +1,84 @@
+#!/usr/bin/env bash
+# Usage: compare_run.sh [-r TOLERANCE] [-n RANKS -m MPIEXEC] [-b FILE:COLUMN:LOW:HIGH]...
+#                       RBC_IFEM PRM EXPECTED_DIR NUMDIFF
+#
+# Runs an experiment (on RANKS MPI ranks with -n) in an empty directory and
+# compares each file stored in EXPECTED_DIR with the run's file of that name
+# using numdiff (relative TOLERANCE, default 1e-8; absolute 1e-10 for values
+# near 0). run.log stands for the program's log, less the lines naming the
+# number of ranks and the memory used. For a CSV file only the columns
+# named in the stored file's header are compared, so a stored file can leave
+# out columns that legitimately differ (iteration counts across rank counts).
+# Each -b checks that COLUMN of the last row of the run's CSV FILE (in the
+# output directory) lies in [LOW, HIGH]: a band around a published value.
+set -u
+source "$(dirname "$0")/../script_setup.sh"
+tolerance=1e-8
+ranks=
+mpiexec=
+bands=()
+while getopts "r:n:m:b:" option; do
+  case $option in
+    r) tolerance=$OPTARG ;;
+    n) ranks=$OPTARG ;;
+    m) mpiexec=$OPTARG ;;
+    b) bands+=("$OPTARG") ;;
+    *) exit 2 ;;
+  esac
+done
+shift $((OPTIND - 1))
+exe=$1
+prm=$2
+expected=$3
+numdiff=$4
+
+set_launcher "$ranks" "$mpiexec"
+enter_scratch_directory
+
+"${launcher[@]}" "$exe" "$prm" >log.txt 2>&1
+status=$?
+cat log.txt
+[ $status -eq 0 ] || { echo "FAILED: exit status $status"; exit 1; }
+grep -v -e "rank(s)" -e "peak memory" log.txt >run.log
+
+# The columns of CSV file $2 named in the header of CSV file $1, in $1's order.
+select_columns() {
+  awk -F, 'NR == FNR { if (FNR == 1) wanted = $0; next }
+           FNR == 1 { n = split(wanted, names, ",");
+                      for (i = 1; i <= NF; ++i) column[$i] = i;
+                      for (j = 1; j <= n; ++j) if (!(names[j] in column)) { print "missing column " names[j]; exit 1 } }
+           { line = $(column[names[1]]);
+             for (j = 2; j <= n; ++j) line = line "," $(column[names[j]]);
+             print line }' "$1" "$2"
+}
+
+directory=$(sed -n 's/^set Output directory *= *//p' "$prm")
+failed=0
+for reference in "$expected"/*; do
+  name=$(basename "$reference")
+  result="$directory/$name"
+  [ "$name" = run.log ] && result=run.log
+  if [[ $name == *.csv ]]; then
+    select_columns "$reference" "$result" >"selected_$name"
+    result="selected_$name"
+  fi
+  if ! "$numdiff" -q -s ' \t\n,' -r "$tolerance" -a 1e-10 "$reference" "$result"; then
+    echo "FAILED: $name differs from the stored $reference (relative tolerance $tolerance):"
+    "$numdiff" -s ' \t\n,' -r "$tolerance" -a 1e-10 "$reference" "$result" | head -20
+    failed=1
+  fi
+done
+[ $failed -eq 0 ] && echo "ok: matches $expected (relative tolerance $tolerance)"
+
+for band in "${bands[@]}"; do
+  IFS=: read -r file name low high <<<"$band"
+  value=$(awk -F, -v name="$name" 'FNR == 1 { for (i = 1; i <= NF; ++i) if ($i == name) c = i; next }
+                                    { v = $c } END { print v }' "$directory/$file")
+  if awk -v v="$value" -v lo="$low" -v hi="$high" 'BEGIN { exit !(v != "" && v >= lo && v <= hi) }'; then
+    echo "ok: $file $name = $value lies in [$low, $high]"
+  else
+    echo "FAILED: $file $name = $value, outside [$low, $high]"
+    failed=1
+  fi
+done
+exit $failed

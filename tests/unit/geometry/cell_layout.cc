@@ -1,0 +1,211 @@
+// Cell layouts: for every kind, every feasible number of cells and random
+// seeds 1..20 no two membrane meshes come closer than Minimum gap and none
+// touches the wall (measured between the meshed surfaces, not the centres);
+// uniform spacing and clustered gaps are exact; random layouts are
+// reproducible; the hematocrit is total cell volume / lumen volume.
+
+#include <rbc_ifem/geometry/cell_layout.h>
+#include <rbc_ifem/geometry/cell_surface.h>
+#include <rbc_ifem/base/input_error.h>
+
+#include <memory>
+
+#include "check.h"
+
+using namespace rbc_ifem;
+
+namespace
+{
+  /// Build the membranes of a layout and measure their clearance.
+  Clearance
+  clearance_of(const CellLayout &layout,
+               const CellParameters &cells,
+               const GeometryParameters &geometry,
+               const unsigned int refinements)
+  {
+    const EvansFungShape                              shape(cells.diameter);
+    std::vector<std::unique_ptr<Triangulation<2, 3>>> surfaces;
+    std::vector<const Triangulation<2, 3> *>          pointers;
+    for (const CellPlacement &placement : layout.placements())
+      {
+        surfaces.push_back(std::make_unique<Triangulation<2, 3>>());
+        create_cell_surface(*surfaces.back(), shape, placement, refinements);
+        pointers.push_back(surfaces.back().get());
+      }
+    return measure_clearance(pointers, MappingQ<2, 3>(2), geometry.capillary_radius);
+  }
+
+  /// The largest |x_i - expected(i)| over the cells' centres.
+  template <typename Expected>
+  double
+  largest_deviation(const CellLayout &layout, const Expected &expected)
+  {
+    double worst = 0.;
+    for (unsigned int i = 0; i < layout.placements().size(); ++i)
+      worst = std::max(worst, std::abs(layout.placements()[i].center[0] - expected(i)));
+    return worst;
+  }
+
+  /// The largest half thickness of the profile, by dense sampling.
+  double
+  sampled_half_length(const double R)
+  {
+    const EvansFungShape shape(2. * R);
+    double               best = 0.;
+    for (unsigned int i = 0; i <= 200000; ++i)
+      best = std::max(best, shape.half_thickness(R * i / 200000.));
+    return best;
+  }
+} // namespace
+
+int
+main()
+{
+  Checker                  check;
+  const GeometryParameters geometry;
+  const CellParameters     cells;
+  LayoutParameters         layout;
+  const double             gap = layout.minimum_gap;
+
+  // The cell length along the axis is twice the profile's largest half
+  // thickness; with it, floor(L / (length + gap)) cells fit: 7, as in the paper.
+  const CellLayout reference(layout, geometry, cells);
+  check.near("cell length along the axis [µm]",
+             reference.cell_length(),
+             2. * sampled_half_length(cells.diameter / 2.),
+             1e-8);
+  check.near("cells that fit in 20 µm", reference.max_cells(), 7., 0.);
+
+  // Every kind, every feasible N, seeds 1..20 for random: the meshed
+  // surfaces keep the gap (up to the mesh's distance from the true shape,
+  // < 1e-3 µm at 2 refinements) and stay off the wall.
+  for (const std::string kind : {"uniform", "random", "clustered"})
+    {
+      layout.kind         = kind;
+      double worst_gap    = std::numeric_limits<double>::infinity();
+      double worst_wall   = std::numeric_limits<double>::infinity();
+      unsigned int n_runs = 0;
+      for (unsigned int n = 1; n <= reference.max_cells(); ++n)
+        for (unsigned int seed = 1; seed <= (kind == "random" ? 20u : 1u); ++seed)
+          {
+            layout.n_cells = n;
+            layout.seed    = seed;
+            const CellLayout cell_layout(layout, geometry, cells);
+            const Clearance  c = clearance_of(cell_layout, cells, geometry, 2);
+            worst_gap          = std::min(worst_gap, c.min_cell_gap);
+            worst_wall         = std::min(worst_wall, c.min_wall_gap);
+            ++n_runs;
+            for (const CellPlacement &p : cell_layout.placements())
+              if (p.center[0] - 0.5 * cell_layout.cell_length() < 0.5 * gap - 1e-12 ||
+                  p.center[0] + 0.5 * cell_layout.cell_length() >
+                    geometry.capillary_length - 0.5 * gap + 1e-12)
+                check.holds(kind + ": a cell leaves the segment", false);
+          }
+      std::cout << kind << ": " << n_runs << " layouts\n";
+      check.at_least(kind + ": smallest membrane gap over all layouts [µm]", worst_gap, gap - 1e-3);
+      check.near(kind + ": smallest wall clearance [µm]",
+                 worst_wall,
+                 geometry.capillary_radius - cells.diameter / 2.,
+                 1e-3);
+    }
+
+  // Uniform: centres at (i + 1/2) L / N exactly.
+  layout.kind    = "uniform";
+  layout.n_cells = 6;
+  {
+    const CellLayout uniform(layout, geometry, cells);
+    const double     worst = largest_deviation(uniform, [](const unsigned int i) {
+      return (i + 0.5) * 20. / 6.;
+    });
+    check.at_most("uniform: largest deviation from (i+1/2) L/N [µm]", worst, 1e-12);
+  }
+
+  // Clustered: centres one cell length + gap apart, and the measured gap
+  // between neighbouring membranes equal to Minimum gap (the sampled
+  // distance overestimates it by < 1e-3 µm at 4 refinements).
+  layout.kind    = "clustered";
+  layout.n_cells = 5;
+  {
+    const CellLayout clustered(layout, geometry, cells);
+    const double     first = clustered.placements()[0].center[0];
+    const double     worst = largest_deviation(clustered, [&](const unsigned int i) {
+      return first + i * (clustered.cell_length() + gap);
+    });
+    check.at_most("clustered: centres - (first + i (length + gap)) [µm]", worst, 1e-12);
+    const double middle = 0.5 * (clustered.placements()[0].center[0] +
+                                 clustered.placements()[4].center[0]);
+    check.near("clustered: group centre [µm]", middle, 10., 1e-12);
+    check.near("clustered: measured gap between membranes [µm]",
+               clearance_of(clustered, cells, geometry, 4).min_cell_gap,
+               gap,
+               1e-3);
+  }
+
+  // Random: the same seed gives the same layout, another seed another one.
+  layout.kind    = "random";
+  layout.n_cells = 4;
+  {
+    layout.seed = 7;
+    const CellLayout a(layout, geometry, cells), b(layout, geometry, cells);
+    layout.seed = 8;
+    const CellLayout c(layout, geometry, cells);
+    bool same = true, different = false;
+    for (unsigned int i = 0; i < 4; ++i)
+      {
+        same      = same && a.placements()[i].center == b.placements()[i].center;
+        different = different || a.placements()[i].center != c.placements()[i].center;
+      }
+    check.holds("random: seed 7 twice gives the same layout", same);
+    check.holds("random: seeds 7 and 8 give different layouts", different);
+  }
+
+  // Tilted cells (axis along z, in the cross-section): the cell length is
+  // the diameter, and they still keep the gap.
+  {
+    CellParameters tilted = cells;
+    tilted.axis           = Tensor<1, 3>({0., 0., 1.});
+    layout.kind           = "clustered";
+    layout.n_cells        = 2;
+    const CellLayout standing(layout, geometry, tilted);
+    check.near("axis along z: cell length = diameter [µm]", standing.cell_length(), 7.5, 1e-9);
+    check.at_least("axis along z: measured membrane gap [µm]",
+                   clearance_of(standing, tilted, geometry, 3).min_cell_gap,
+                   gap - 1e-3);
+  }
+
+  // Hematocrit = Σ V / (π R² L), here with 7 cells of the exact volume.
+  {
+    layout.kind    = "uniform";
+    layout.n_cells = 7;
+    const CellLayout          full(layout, geometry, cells);
+    const double              v = 82.95803163; // exact, test evans_fung_surface
+    check.near("hematocrit of 7 cells",
+               full.hematocrit(std::vector<double>(7, v)),
+               7. * v / (numbers::PI * 25. * 20.),
+               1e-14);
+  }
+
+  // Too many cells, and a cluster that does not fit where it is put.
+  const auto throws = [&](const std::string &what, const LayoutParameters &l) {
+    try
+      {
+        CellLayout(l, geometry, cells);
+        check.holds(what + " is refused", false);
+      }
+    catch (const InputError &e)
+      {
+        check.holds(what + " is refused: " + e.what(), true);
+      }
+  };
+  layout.n_cells = 8;
+  for (const std::string kind : {"uniform", "random", "clustered"})
+    {
+      layout.kind = kind;
+      throws("8 cells, " + kind, layout);
+    }
+  layout.n_cells          = 5;
+  layout.cluster_position = 0.1;
+  throws("a cluster of 5 centred at 0.1 L", layout);
+
+  return check.exit_code();
+}

@@ -7,15 +7,15 @@
  *   rbc-ifem --help                 usage
  */
 
+#include <rbc_ifem/base/input_error.h>
+#include <rbc_ifem/base/solver_failure.h>
 #include <rbc_ifem/experiments/diffusion_experiment.h>
 #include <rbc_ifem/experiments/flow_experiment.h>
 #include <rbc_ifem/experiments/geometry_experiment.h>
-#include <rbc_ifem/ifem/ifem_simulation.h>
-#include <rbc_ifem/base/input_error.h>
-#include <rbc_ifem/parameters.h>
 #include <rbc_ifem/experiments/shear_experiment.h>
-#include <rbc_ifem/base/solver_failure.h>
 #include <rbc_ifem/experiments/stretching_experiment.h>
+#include <rbc_ifem/ifem/ifem_simulation.h>
+#include <rbc_ifem/parameters.h>
 
 #include <deal.II/base/mpi.h>
 
@@ -30,12 +30,13 @@ namespace
   void
   print_usage(std::ostream &out)
   {
-    out << "Usage: rbc-ifem FILE.prm            run the experiment in FILE.prm\n"
-           "       mpirun -np N rbc-ifem FILE.prm  the same on N MPI ranks\n"
-           "       rbc-ifem --print-parameters  print every parameter, "
-           "documented, as a valid .prm\n"
-           "       rbc-ifem --help              this text\n"
-           "Ready experiments are in prm/; the documentation is in doc/.\n";
+    out
+      << "Usage: rbc-ifem FILE.prm            run the experiment in FILE.prm\n"
+         "       mpirun -np N rbc-ifem FILE.prm  the same on N MPI ranks\n"
+         "       rbc-ifem --print-parameters  print every parameter, "
+         "documented, as a valid .prm\n"
+         "       rbc-ifem --help              this text\n"
+         "Ready experiments are in prm/; the documentation is in doc/.\n";
   }
 
   void
@@ -54,10 +55,14 @@ namespace
     read_parameters(filename, prm, parameters);
     // Patterns::Selection admits only the experiments that exist.
     if (parameters.experiment == "flow" && parameters.immersed.enabled)
-      IFEMSimulation(parameters, communicator, FlowDomain::capillary(parameters)).run(prm);
+      IFEMSimulation(parameters,
+                     communicator,
+                     FlowDomain::capillary(parameters))
+        .run(prm);
     else if (parameters.experiment == "flow")
       FlowExperiment(parameters, communicator).run(prm);
-    else if (parameters.experiment == "diffusion" || parameters.experiment == "layouts" ||
+    else if (parameters.experiment == "diffusion" ||
+             parameters.experiment == "layouts" ||
              parameters.experiment == "mesh convergence")
       DiffusionExperiment(parameters, communicator).run(prm);
     else if (parameters.experiment == "shear")
@@ -73,11 +78,12 @@ int
 main(int argc, char *argv[])
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const MPI_Comm communicator = MPI_COMM_WORLD;
-  const bool     root = Utilities::MPI::this_mpi_process(communicator) == 0;
+  const MPI_Comm                   communicator = MPI_COMM_WORLD;
+  const bool root = Utilities::MPI::this_mpi_process(communicator) == 0;
 
   const std::vector<std::string> arguments(argv + 1, argv + argc);
-  if (arguments.size() == 1 && (arguments[0] == "--help" || arguments[0] == "-h"))
+  if (arguments.size() == 1 &&
+      (arguments[0] == "--help" || arguments[0] == "-h"))
     {
       if (root)
         print_usage(std::cout);

@@ -12,8 +12,8 @@
  * tube's half length in radii (default 4).
  */
 
-#include <rbc_ifem/reference/axisymmetric_sphere_in_tube.h>
 #include <rbc_ifem/base/input_error.h>
+#include <rbc_ifem/reference/axisymmetric_sphere_in_tube.h>
 
 #include <chrono>
 #include <cmath>
@@ -64,11 +64,16 @@ main(int argc, char *argv[])
   try
     {
       if (arguments.size() > 3)
-        throw InputError("sphere-in-tube-reference takes at most three arguments");
-      const double lambda      = arguments.size() > 0 ? number("LAMBDA", arguments[0]) : 0.5;
-      const double refinements = arguments.size() > 1 ? number("REFINEMENTS", arguments[1]) : 4;
-      const double half_length = arguments.size() > 2 ? number("HALF_LENGTH", arguments[2]) : 4;
-      if (!(refinements >= 0 && refinements <= 7 && refinements == std::floor(refinements)))
+        throw InputError(
+          "sphere-in-tube-reference takes at most three arguments");
+      const double lambda =
+        arguments.size() > 0 ? number("LAMBDA", arguments[0]) : 0.5;
+      const double refinements =
+        arguments.size() > 1 ? number("REFINEMENTS", arguments[1]) : 4;
+      const double half_length =
+        arguments.size() > 2 ? number("HALF_LENGTH", arguments[2]) : 4;
+      if (!(refinements >= 0 && refinements <= 7 &&
+            refinements == std::floor(refinements)))
         throw InputError("REFINEMENTS", arguments[1], "an integer from 0 to 7");
       // Checked here, before the first line of output.
       if (!(lambda > 0. && lambda <= 0.9))
@@ -76,28 +81,33 @@ main(int argc, char *argv[])
       if (!(half_length >= 2.))
         throw InputError("HALF_LENGTH", arguments[2], "at least 2 tube radii");
 
-      std::cout << "lambda,refinements,cells,dofs,towed_drag_factor,held_drag_factor,"
-                   "velocity_ratio,wall_seconds\n";
+      std::cout
+        << "lambda,refinements,cells,dofs,towed_drag_factor,held_drag_factor,"
+           "velocity_ratio,wall_seconds\n";
       for (unsigned int level = 0; level <= refinements; ++level)
         {
-          const auto start = std::chrono::steady_clock::now();
-          const SphereInTubeDrag drag = axisymmetric_sphere_in_tube(lambda, level, half_length);
-          const std::chrono::duration<double> seconds = std::chrono::steady_clock::now() - start;
-          std::cout << lambda << ',' << level << ',' << drag.n_cells << ',' << drag.n_dofs << ','
-                    << std::setprecision(10) << drag.towed_drag_factor << ','
-                    << drag.held_drag_factor << ',' << drag.velocity_ratio << ','
-                    << std::setprecision(3) << seconds.count() << std::setprecision(6)
-                    << std::endl;
+          const auto             start = std::chrono::steady_clock::now();
+          const SphereInTubeDrag drag =
+            axisymmetric_sphere_in_tube(lambda, level, half_length);
+          const std::chrono::duration<double> seconds =
+            std::chrono::steady_clock::now() - start;
+          std::cout << lambda << ',' << level << ',' << drag.n_cells << ','
+                    << drag.n_dofs << ',' << std::setprecision(10)
+                    << drag.towed_drag_factor << ',' << drag.held_drag_factor
+                    << ',' << drag.velocity_ratio << ',' << std::setprecision(3)
+                    << seconds.count() << std::setprecision(6) << std::endl;
         }
     }
   catch (const InputError &e)
     {
-      std::cerr << "sphere-in-tube-reference: error: " << e.what() << '\n' << usage;
+      std::cerr << "sphere-in-tube-reference: error: " << e.what() << '\n'
+                << usage;
       return 1;
     }
   catch (const std::exception &e)
     {
-      std::cerr << "sphere-in-tube-reference: internal error: " << e.what() << std::endl;
+      std::cerr << "sphere-in-tube-reference: internal error: " << e.what()
+                << std::endl;
       return 2;
     }
   return 0;

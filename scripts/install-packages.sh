@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Install the Debian 12 packages rbc-ifem needs: deal.II 9.4 (with MPI,
-# Trilinos, PETSc, METIS, ...), a compiler, CMake, MPI launchers and numdiff
-# for the tests. With --docs also what renders the documentation's figures
-# (python3-vtk9, python3-matplotlib and a virtual X server). Uses sudo when not run as root.
+# Trilinos, PETSc, METIS, ...), a compiler, CMake, MPI launchers, numdiff for
+# the tests and clang-format for the code style. With --docs also what renders
+# the documentation's figures (python3-vtk9, python3-matplotlib and a virtual
+# X server). Uses sudo when not run as root.
 set -euo pipefail
 
-packages=(libdeal.ii-dev g++ cmake make openmpi-bin numdiff)
+packages=(libdeal.ii-dev g++ cmake make openmpi-bin numdiff clang-format)
 if [ "${1:-}" = "--docs" ]; then
   packages+=(python3-vtk9 python3-matplotlib xvfb xauth)
 fi

@@ -1,5 +1,5 @@
-#include <rbc_ifem/geometry/capillary_mesh.h>
 #include <rbc_ifem/base/input_error.h>
+#include <rbc_ifem/geometry/capillary_mesh.h>
 #include <rbc_ifem/parameters.h>
 
 #include <deal.II/base/exceptions.h>
@@ -35,7 +35,9 @@ namespace rbc_ifem
     /// Throw unless @p value > 0 (in @p unit, for the message): thicknesses
     /// and lengths of zero make no mesh, rates and strains of zero no run.
     void
-    require_positive(const std::string &name, const double value, const std::string &unit = " µm")
+    require_positive(const std::string &name,
+                     const double       value,
+                     const std::string &unit = " µm")
     {
       if (!(value > 0.))
         throw InputError(name, to_string(value), "it must be > 0" + unit + ".");
@@ -130,11 +132,12 @@ namespace rbc_ifem
   MeshParameters::parse(ParameterHandler &prm)
   {
     prm.enter_subsection("Mesh");
-    fluid_global_refinements     = prm.get_integer("Fluid global refinements");
-    fluid_band_refinements       = prm.get_integer("Fluid band refinements");
-    diffusion_global_refinements = prm.get_integer("Diffusion global refinements");
-    diffusion_band_refinements   = prm.get_integer("Diffusion band refinements");
-    band_width                   = prm.get_double("Band width");
+    fluid_global_refinements = prm.get_integer("Fluid global refinements");
+    fluid_band_refinements   = prm.get_integer("Fluid band refinements");
+    diffusion_global_refinements =
+      prm.get_integer("Diffusion global refinements");
+    diffusion_band_refinements = prm.get_integer("Diffusion band refinements");
+    band_width                 = prm.get_double("Band width");
     prm.leave_subsection();
   }
 
@@ -142,12 +145,13 @@ namespace rbc_ifem
   CellParameters::declare(ParameterHandler &prm)
   {
     prm.enter_subsection("Cells");
-    prm.declare_entry("Shape",
-                      "biconcave",
-                      Patterns::Selection("biconcave|sphere"),
-                      "Reference shape of every cell: biconcave, the Evans-Fung "
-                      "red cell; sphere, a spherical capsule of the same "
-                      "Diameter (the validation runs, doc/validation.md).");
+    prm.declare_entry(
+      "Shape",
+      "biconcave",
+      Patterns::Selection("biconcave|sphere"),
+      "Reference shape of every cell: biconcave, the Evans-Fung "
+      "red cell; sphere, a spherical capsule of the same "
+      "Diameter (the validation runs, doc/validation.md).");
     prm.declare_entry("Diameter",
                       "7.5",
                       Patterns::Double(0.),
@@ -173,9 +177,9 @@ namespace rbc_ifem
   CellParameters::parse(ParameterHandler &prm)
   {
     prm.enter_subsection("Cells");
-    shape               = prm.get("Shape");
-    diameter            = prm.get_double("Diameter");
-    surface_refinements = prm.get_integer("Surface refinements");
+    shape                       = prm.get("Shape");
+    diameter                    = prm.get_double("Diameter");
+    surface_refinements         = prm.get_integer("Surface refinements");
     const std::string axis_text = prm.get("Axis");
     const auto        components =
       Utilities::string_to_double(Utilities::split_string_list(axis_text));
@@ -322,7 +326,9 @@ namespace rbc_ifem
     max_newton_iterations = prm.get_integer("Max Newton iterations");
     prm.leave_subsection();
     if (!(viscosity > 0.))
-      throw InputError("Fluid/Viscosity", to_string(viscosity), "it must be > 0 pN s/µm².");
+      throw InputError("Fluid/Viscosity",
+                       to_string(viscosity),
+                       "it must be > 0 pN s/µm².");
   }
 
   void
@@ -355,7 +361,9 @@ namespace rbc_ifem
     output_interval = prm.get_integer("Output interval");
     prm.leave_subsection();
     if (!(time_step > 0.))
-      throw InputError("Time/Time step", to_string(time_step), "it must be > 0 s.");
+      throw InputError("Time/Time step",
+                       to_string(time_step),
+                       "it must be > 0 s.");
   }
 
   void
@@ -428,16 +436,20 @@ namespace rbc_ifem
     degree                = prm.get_integer("Finite element degree");
     prm.leave_subsection();
     if (!(shear_modulus > 0.))
-      throw InputError("Membrane/Shear modulus", to_string(shear_modulus), "it must be > 0 pN/µm.");
+      throw InputError("Membrane/Shear modulus",
+                       to_string(shear_modulus),
+                       "it must be > 0 pN/µm.");
     if (law == "neo-Hookean" && !(area_dilation_modulus >= 3. * shear_modulus))
-      throw InputError("Membrane/Area dilation modulus",
-                       to_string(area_dilation_modulus),
-                       "the neo-Hookean law needs K ≥ 3 G = " + to_string(3. * shear_modulus) +
-                         " pN/µm (its C2 = K - 3G; K = 3G is the classical thin-shell law).");
+      throw InputError(
+        "Membrane/Area dilation modulus",
+        to_string(area_dilation_modulus),
+        "the neo-Hookean law needs K ≥ 3 G = " + to_string(3. * shear_modulus) +
+          " pN/µm (its C2 = K - 3G; K = 3G is the classical thin-shell law).");
     if (law == "Skalak" && !(area_dilation_modulus > shear_modulus))
       throw InputError("Membrane/Area dilation modulus",
                        to_string(area_dilation_modulus),
-                       "the Skalak law needs K > G = " + to_string(shear_modulus) +
+                       "the Skalak law needs K > G = " +
+                         to_string(shear_modulus) +
                          " pN/µm (its C = (K/G - 1)/2 > 0).");
   }
 
@@ -518,10 +530,12 @@ namespace rbc_ifem
     tether_stiffness      = prm.get_double("Tether stiffness");
     prm.leave_subsection();
     if (tether_stiffness > 0. && follow_cells)
-      throw InputError("Immersed cells/Follow cells",
-                       "true",
-                       "held cells (Immersed cells/Tether stiffness = " + to_string(tether_stiffness) +
-                         " pN/µm) need a frame at rest: set Follow cells = false.");
+      throw InputError(
+        "Immersed cells/Follow cells",
+        "true",
+        "held cells (Immersed cells/Tether stiffness = " +
+          to_string(tether_stiffness) +
+          " pN/µm) need a frame at rest: set Follow cells = false.");
     if (!(max_step_displacement > 0.))
       throw InputError("Immersed cells/Maximum step displacement",
                        to_string(max_step_displacement),
@@ -619,11 +633,11 @@ namespace rbc_ifem
   ShearParameters::parse(ParameterHandler &prm)
   {
     prm.enter_subsection("Shear");
-    shear_rate = prm.get_double("Shear rate");
-    capillary_numbers =
-      Utilities::string_to_double(Utilities::split_string_list(prm.get("Capillary numbers")));
-    const std::vector<double> size =
-      Utilities::string_to_double(Utilities::split_string_list(prm.get("Box size")));
+    shear_rate        = prm.get_double("Shear rate");
+    capillary_numbers = Utilities::string_to_double(
+      Utilities::split_string_list(prm.get("Capillary numbers")));
+    const std::vector<double> size = Utilities::string_to_double(
+      Utilities::split_string_list(prm.get("Box size")));
     for (unsigned int d = 0; d < 3; ++d)
       box[d] = size[d];
     strain             = prm.get_double("Total strain");
@@ -646,17 +660,22 @@ namespace rbc_ifem
     if (!(averaging_strain > 0. && averaging_strain < strain))
       throw InputError("Shear/Averaging strain",
                        to_string(averaging_strain),
-                       "it must be > 0 and below Shear/Total strain = " + to_string(strain) + ".");
+                       "it must be > 0 and below Shear/Total strain = " +
+                         to_string(strain) + ".");
     const char *names[] = {"length", "height", "width"};
     for (unsigned int d = 0; d < 3; ++d)
       {
         const double cells_across = box[d] / cells.diameter;
-        if (!(cells_across >= 2. && std::abs(cells_across - std::round(cells_across)) < 1e-6))
-          throw InputError("Shear/Box size",
-                           to_string(box[0]) + ", " + to_string(box[1]) + ", " + to_string(box[2]),
-                           std::string("the box ") + names[d] +
-                             " must be a multiple of Cells/Diameter = " + to_string(cells.diameter) +
-                             " µm, at least twice it, so that the capsule fits.");
+        if (!(cells_across >= 2. &&
+              std::abs(cells_across - std::round(cells_across)) < 1e-6))
+          throw InputError(
+            "Shear/Box size",
+            to_string(box[0]) + ", " + to_string(box[1]) + ", " +
+              to_string(box[2]),
+            std::string("the box ") + names[d] +
+              " must be a multiple of Cells/Diameter = " +
+              to_string(cells.diameter) +
+              " µm, at least twice it, so that the capsule fits.");
       }
   }
 
@@ -675,18 +694,21 @@ namespace rbc_ifem
                        to_string(attached_fraction),
                        "it must be > 0: the beads must hold some membrane.");
     if (!(tolerance > 0.))
-      throw InputError("Stretching/Residual tolerance", to_string(tolerance), "it must be > 0 pN.");
+      throw InputError("Stretching/Residual tolerance",
+                       to_string(tolerance),
+                       "it must be > 0 pN.");
   }
 
   void
   DiffusionParameters::declare(ParameterHandler &prm)
   {
     prm.enter_subsection("Diffusion");
-    prm.declare_entry("Alveolar pressure",
-                      "1",
-                      Patterns::Double(0.),
-                      "CO partial pressure P_A on the outer surface of the gas "
-                      "layer [Torr]. DM = CO flow / P_A does not depend on it.");
+    prm.declare_entry(
+      "Alveolar pressure",
+      "1",
+      Patterns::Double(0.),
+      "CO partial pressure P_A on the outer surface of the gas "
+      "layer [Torr]. DM = CO flow / P_A does not depend on it.");
     const auto declare_material = [&](const std::string &name,
                                       const std::string &diffusivity,
                                       const std::string &solubility,
@@ -694,26 +716,35 @@ namespace rbc_ifem
       prm.declare_entry(name + " diffusivity",
                         diffusivity,
                         Patterns::Double(0.),
-                        "CO diffusion coefficient D in the " + note + " [µm²/s].");
-      prm.declare_entry(name + " solubility",
-                        solubility,
-                        Patterns::Double(0.),
-                        "CO solubility α in the " + note +
-                          " [Torr⁻¹, volume of CO (STPD) per volume per Torr].");
+                        "CO diffusion coefficient D in the " + note +
+                          " [µm²/s].");
+      prm.declare_entry(
+        name + " solubility",
+        solubility,
+        Patterns::Double(0.),
+        "CO solubility α in the " + note +
+          " [Torr⁻¹, volume of CO (STPD) per volume per Torr].");
     };
-    declare_material("Plasma", "2.453e3", "2.363e-5", "plasma (lumen; paper, Table 2)");
-    declare_material("Wall", "2.453e3", "2.363e-5", "vessel wall tissue (paper, Table 2)");
+    declare_material("Plasma",
+                     "2.453e3",
+                     "2.363e-5",
+                     "plasma (lumen; paper, Table 2)");
+    declare_material("Wall",
+                     "2.453e3",
+                     "2.363e-5",
+                     "vessel wall tissue (paper, Table 2)");
     declare_material("Gas",
                      "2.413e7",
                      "1.159e-3",
                      "alveolar gas. D from the paper's Table 2; α of an ideal "
                      "gas at 37 °C in the same units: (1/760) (273.15/310.15) "
                      "= 1.159e-3");
-    prm.declare_entry("Finite element degree",
-                      "1",
-                      Patterns::Integer(1, 3),
-                      "Degree k of the continuous FE_Q<3>(k) for P (the mapping "
-                      "has the same degree).");
+    prm.declare_entry(
+      "Finite element degree",
+      "1",
+      Patterns::Integer(1, 3),
+      "Degree k of the continuous FE_Q<3>(k) for P (the mapping "
+      "has the same degree).");
     prm.declare_entry("Augmentation",
                       "30",
                       Patterns::Double(0.),
@@ -786,10 +817,11 @@ namespace rbc_ifem
   LayoutStudyParameters::declare(ParameterHandler &prm)
   {
     prm.enter_subsection("Layout study");
-    prm.declare_entry("Kinds",
-                      "uniform, random, clustered",
-                      Patterns::List(Patterns::Selection("uniform|random|clustered"), 1),
-                      "Experiment 'layouts': the layout kinds to compare.");
+    prm.declare_entry(
+      "Kinds",
+      "uniform, random, clustered",
+      Patterns::List(Patterns::Selection("uniform|random|clustered"), 1),
+      "Experiment 'layouts': the layout kinds to compare.");
     prm.declare_entry("Numbers of cells",
                       "1, 2, 3, 4, 5, 6, 7",
                       Patterns::List(Patterns::Integer(1), 1),
@@ -810,7 +842,8 @@ namespace rbc_ifem
     prm.enter_subsection("Layout study");
     kinds = Utilities::split_string_list(prm.get("Kinds"));
     numbers_of_cells.clear();
-    for (const int n : Utilities::string_to_int(Utilities::split_string_list(prm.get("Numbers of cells"))))
+    for (const int n : Utilities::string_to_int(
+           Utilities::split_string_list(prm.get("Numbers of cells"))))
       numbers_of_cells.push_back(n);
     n_seeds = prm.get_integer("Random seeds");
     prm.leave_subsection();
@@ -841,26 +874,27 @@ namespace rbc_ifem
   void
   Parameters::declare(ParameterHandler &prm)
   {
-    prm.declare_entry("Experiment",
-                      "geometry",
-                      Patterns::Selection(
-                        "geometry|diffusion|layouts|mesh convergence|flow|stretching|shear"),
-                      "What to run. geometry: build the fluid and diffusion "
-                      "meshes and the cell layout, and write them out. "
-                      "diffusion: steady CO uptake of the layout (dm.csv, "
-                      "VTU of P and of the membrane flux). layouts: DM for "
-                      "every kind and number of cells of subsection Layout "
-                      "study (layouts.csv). mesh convergence: DM of the "
-                      "layout on successively finer meshes (convergence.csv). "
-                      "flow: the plasma flow in the capillary for Time/Number "
-                      "of steps (flow.csv, VTU of v and p), with the cells of "
-                      "subsection Layout in it if Immersed cells/Enabled "
-                      "(cells.csv, dm.csv, VTU of the membranes). "
-                      "stretching: one cell pulled by two beads with forces "
-                      "up to Stretching/Maximum force (stretch.csv, VTU of "
-                      "each equilibrium). shear: a spherical capsule in "
-                      "simple shear for each Shear/Capillary numbers "
-                      "(shear.csv per run, shear_summary.csv).");
+    prm.declare_entry(
+      "Experiment",
+      "geometry",
+      Patterns::Selection(
+        "geometry|diffusion|layouts|mesh convergence|flow|stretching|shear"),
+      "What to run. geometry: build the fluid and diffusion "
+      "meshes and the cell layout, and write them out. "
+      "diffusion: steady CO uptake of the layout (dm.csv, "
+      "VTU of P and of the membrane flux). layouts: DM for "
+      "every kind and number of cells of subsection Layout "
+      "study (layouts.csv). mesh convergence: DM of the "
+      "layout on successively finer meshes (convergence.csv). "
+      "flow: the plasma flow in the capillary for Time/Number "
+      "of steps (flow.csv, VTU of v and p), with the cells of "
+      "subsection Layout in it if Immersed cells/Enabled "
+      "(cells.csv, dm.csv, VTU of the membranes). "
+      "stretching: one cell pulled by two beads with forces "
+      "up to Stretching/Maximum force (stretch.csv, VTU of "
+      "each equilibrium). shear: a spherical capsule in "
+      "simple shear for each Shear/Capillary numbers "
+      "(shear.csv per run, shear_summary.csv).");
     prm.declare_entry("Output directory",
                       "output/run",
                       Patterns::DirectoryName(),
@@ -888,9 +922,10 @@ namespace rbc_ifem
     if (output_directory.empty() ||
         (std::filesystem::exists(output_directory) &&
          !std::filesystem::is_directory(output_directory)))
-      throw InputError("Output directory",
-                       output_directory,
-                       "it must name a directory, new or existing, not a file.");
+      throw InputError(
+        "Output directory",
+        output_directory,
+        "it must name a directory, new or existing, not a file.");
     geometry.parse(prm);
     mesh.parse(prm);
     cells.parse(prm);
@@ -911,18 +946,18 @@ namespace rbc_ifem
     else
       cells.validate(geometry);
     if (experiment == "flow" && immersed.enabled && layout.n_cells == 0)
-      throw InputError("Layout/Number of cells",
-                       "0",
-                       "a flow with Immersed cells/Enabled = true needs at least one cell.");
+      throw InputError(
+        "Layout/Number of cells",
+        "0",
+        "a flow with Immersed cells/Enabled = true needs at least one cell.");
   }
 
   void
   read_parameters(const std::string &filename,
-                  ParameterHandler & prm,
-                  Parameters &       parameters)
+                  ParameterHandler  &prm,
+                  Parameters        &parameters)
   {
-    if (!std::filesystem::is_regular_file(filename) ||
-        !std::ifstream(filename))
+    if (!std::filesystem::is_regular_file(filename) || !std::ifstream(filename))
       throw InputError("cannot read the parameter file '" + filename +
                        "': it does not exist or is not a readable file.");
 

@@ -73,8 +73,8 @@ private:
          const double       value,
          const std::string &criterion)
   {
-    std::cout << (ok ? "  ok     " : "  FAILED ") << what << " = " << number(value)
-              << " (" << criterion << ")\n";
+    std::cout << (ok ? "  ok     " : "  FAILED ") << what << " = "
+              << number(value) << " (" << criterion << ")\n";
     failures += !ok;
   }
 

@@ -51,10 +51,10 @@ namespace rbc_ifem
   /// The red cells' reference shape and its surface mesh (subsection "Cells").
   struct CellParameters
   {
-    std::string    shape               = "biconcave"; ///< biconcave | sphere
-    double         diameter            = 7.5; ///< Evans-Fung diameter 2R [µm]
-    unsigned int   surface_refinements = 3;
-    Tensor<1, 3>   axis{{1., 0., 0.}}; ///< symmetry axis, unit length
+    std::string  shape               = "biconcave"; ///< biconcave | sphere
+    double       diameter            = 7.5; ///< Evans-Fung diameter 2R [µm]
+    unsigned int surface_refinements = 3;
+    Tensor<1, 3> axis{{1., 0., 0.}}; ///< symmetry axis, unit length
 
     static void
     declare(ParameterHandler &prm);
@@ -83,14 +83,14 @@ namespace rbc_ifem
   /// The plasma and how its flow is solved (subsection "Fluid").
   struct FluidParameters
   {
-    std::string  model            = "Stokes"; ///< Stokes | Navier-Stokes
-    double       viscosity        = 1.2e-3;   ///< μ [pN s/µm²]
-    double       density          = 1e-9;     ///< ρ [mg/µm³]
-    double       inlet_mean_speed = 500.;     ///< ū [µm/s]
-    double       frame_velocity   = 0.;       ///< U_frame along x [µm/s]
-    double       linear_tolerance = 1e-6;     ///< relative, FGMRES
+    std::string  model                 = "Stokes"; ///< Stokes | Navier-Stokes
+    double       viscosity             = 1.2e-3;   ///< μ [pN s/µm²]
+    double       density               = 1e-9;     ///< ρ [mg/µm³]
+    double       inlet_mean_speed      = 500.;     ///< ū [µm/s]
+    double       frame_velocity        = 0.;       ///< U_frame along x [µm/s]
+    double       linear_tolerance      = 1e-6;     ///< relative, FGMRES
     unsigned int max_linear_iterations = 500;
-    double       newton_tolerance      = 1e-8; ///< relative to the first residual
+    double       newton_tolerance = 1e-8; ///< relative to the first residual
     unsigned int max_newton_iterations = 20;
 
     static void
@@ -118,8 +118,8 @@ namespace rbc_ifem
    */
   struct MembraneParameters
   {
-    std::string  law                   = "neo-Hookean"; ///< neo-Hookean | Skalak
-    double       shear_modulus         = 5.5;   ///< G_s [pN/µm]
+    std::string  law           = "neo-Hookean"; ///< neo-Hookean | Skalak
+    double       shear_modulus = 5.5;           ///< G_s [pN/µm]
     double       area_dilation_modulus = 500.;  ///< K [pN/µm]
     double       bending_modulus       = 0.2;   ///< κ [pN µm]
     double       spontaneous_curvature = 0.;    ///< c0 [1/µm]
@@ -140,14 +140,15 @@ namespace rbc_ifem
    */
   struct ImmersedParameters
   {
-    bool         enabled                 = false; ///< carry the cells of subsection Layout
-    bool         follow_cells            = true;  ///< frame velocity = the cells' mean velocity
-    unsigned int diffusion_interval      = 0;     ///< DM every this many steps; 0: never
-    unsigned int checkpoint_interval     = 0;     ///< 0: never
-    bool         resume                  = false; ///< from Output directory/checkpoint.bin
-    double       max_step_displacement   = 0.25;  ///< of the fluid mesh size h, per step
-    unsigned int progress_interval       = 10;    ///< a progress line every this many steps
-    double       tether_stiffness        = 0.;    ///< springs to the start [pN/µm]; 0: free
+    bool enabled      = false; ///< carry the cells of subsection Layout
+    bool follow_cells = true;  ///< frame velocity = the cells' mean velocity
+    unsigned int diffusion_interval = 0; ///< DM every this many steps; 0: never
+    unsigned int checkpoint_interval = 0; ///< 0: never
+    bool         resume = false; ///< from Output directory/checkpoint.bin
+    double max_step_displacement = 0.25; ///< of the fluid mesh size h, per step
+    unsigned int progress_interval =
+      10;                         ///< a progress line every this many steps
+    double tether_stiffness = 0.; ///< springs to the start [pN/µm]; 0: free
 
     static void
     declare(ParameterHandler &prm);
@@ -158,7 +159,7 @@ namespace rbc_ifem
   /// The optical-tweezers experiment (subsection "Stretching").
   struct StretchingParameters
   {
-    double       max_force         = 200.;  ///< [pN]
+    double       max_force         = 200.; ///< [pN]
     unsigned int n_force_steps     = 8;
     double       attached_fraction = 0.025; ///< of the membrane area, per bead
     double       tolerance         = 1e-3;  ///< nodal force residual [pN]
@@ -177,13 +178,15 @@ namespace rbc_ifem
    */
   struct ShearParameters
   {
-    double              shear_rate = 100.;  ///< γ̇ [1/s]
+    double              shear_rate = 100.; ///< γ̇ [1/s]
     std::vector<double> capillary_numbers{0.0125, 0.025, 0.05, 0.1, 0.2};
-    Tensor<1, 3>        box{{24., 24., 24.}}; ///< length (x), height (y), width (z) [µm]
-    double              strain           = 4.;   ///< run length γ̇ t
-    double              averaging_strain = 0.5;  ///< steady values: means over the steadiest window of this γ̇ t
-    double              output_strain    = 0.25; ///< VTU and shear.csv every γ̇ t
-    double              time_step_fraction = 0.5; ///< of the explicit-coupling limit
+    Tensor<1, 3>        box{
+      {24., 24., 24.}}; ///< length (x), height (y), width (z) [µm]
+    double strain = 4.;        ///< run length γ̇ t
+    double averaging_strain =
+      0.5; ///< steady values: means over the steadiest window of this γ̇ t
+    double output_strain      = 0.25; ///< VTU and shear.csv every γ̇ t
+    double time_step_fraction = 0.5;  ///< of the explicit-coupling limit
 
     static void
     declare(ParameterHandler &prm);
@@ -202,16 +205,16 @@ namespace rbc_ifem
    */
   struct DiffusionParameters
   {
-    double       alveolar_pressure    = 1.;        ///< P_A [Torr]
-    double       plasma_diffusivity   = 2.453e3;   ///< D [µm²/s]
-    double       plasma_solubility    = 2.363e-5;  ///< α [Torr⁻¹]
-    double       wall_diffusivity     = 2.453e3;   ///< D [µm²/s]
-    double       wall_solubility      = 2.363e-5;  ///< α [Torr⁻¹]
-    double       gas_diffusivity      = 2.413e7;   ///< D [µm²/s]
-    double       gas_solubility       = 1.159e-3;  ///< α [Torr⁻¹]
-    unsigned int degree               = 1;         ///< of FE_Q<3> for P
-    double       augmentation         = 30.;       ///< γ, dimensionless
-    double       linear_tolerance     = 1e-8;      ///< relative, FGMRES
+    double       alveolar_pressure     = 1.;       ///< P_A [Torr]
+    double       plasma_diffusivity    = 2.453e3;  ///< D [µm²/s]
+    double       plasma_solubility     = 2.363e-5; ///< α [Torr⁻¹]
+    double       wall_diffusivity      = 2.453e3;  ///< D [µm²/s]
+    double       wall_solubility       = 2.363e-5; ///< α [Torr⁻¹]
+    double       gas_diffusivity       = 2.413e7;  ///< D [µm²/s]
+    double       gas_solubility        = 1.159e-3; ///< α [Torr⁻¹]
+    unsigned int degree                = 1;        ///< of FE_Q<3> for P
+    double       augmentation          = 30.;      ///< γ, dimensionless
+    double       linear_tolerance      = 1e-8;     ///< relative, FGMRES
     unsigned int max_linear_iterations = 1000;
 
     /// αD of the material with this id (Material::plasma, ...) [µm²/(s Torr)].
@@ -254,14 +257,14 @@ namespace rbc_ifem
   /// All parameters of one run.
   struct Parameters
   {
-    std::string        experiment       = "geometry";
-    std::string        output_directory = "output/run";
-    GeometryParameters geometry;
-    MeshParameters     mesh;
-    CellParameters     cells;
-    LayoutParameters   layout;
-    FluidParameters    fluid;
-    TimeParameters     time;
+    std::string               experiment       = "geometry";
+    std::string               output_directory = "output/run";
+    GeometryParameters        geometry;
+    MeshParameters            mesh;
+    CellParameters            cells;
+    LayoutParameters          layout;
+    FluidParameters           fluid;
+    TimeParameters            time;
     MembraneParameters        membrane;
     ImmersedParameters        immersed;
     StretchingParameters      stretching;
@@ -286,8 +289,8 @@ namespace rbc_ifem
    */
   void
   read_parameters(const std::string &filename,
-                  ParameterHandler & prm,
-                  Parameters &       parameters);
+                  ParameterHandler  &prm,
+                  Parameters        &parameters);
 } // namespace rbc_ifem
 
 #endif

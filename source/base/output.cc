@@ -21,19 +21,21 @@ namespace rbc_ifem
   }
 
   void
-  write_pvd(const std::string &                               directory,
-            const std::string &                               name,
+  write_pvd(const std::string                                 &directory,
+            const std::string                                 &name,
             const std::vector<std::pair<double, std::string>> &records,
-            const MPI_Comm                                    communicator)
+            const MPI_Comm                                     communicator)
   {
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
-      write_file_atomically(directory + "/" + name + ".pvd", [&](std::ostream &out) {
-        DataOutBase::write_pvd_record(out, records);
-      });
+      write_file_atomically(directory + "/" + name + ".pvd",
+                            [&](std::ostream &out) {
+                              DataOutBase::write_pvd_record(out, records);
+                            });
   }
 
   void
-  create_output_directory(const std::string &directory, const MPI_Comm communicator)
+  create_output_directory(const std::string &directory,
+                          const MPI_Comm     communicator)
   {
     std::string problem;
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
@@ -45,11 +47,13 @@ namespace rbc_ifem
       }
     problem = Utilities::MPI::broadcast(communicator, problem, 0);
     if (!problem.empty())
-      throw InputError("Output directory", directory, "it cannot be created: " + problem + ".");
+      throw InputError("Output directory",
+                       directory,
+                       "it cannot be created: " + problem + ".");
   }
 
   void
-  write_file_atomically(const std::string &                        path,
+  write_file_atomically(const std::string                         &path,
                         const std::function<void(std::ostream &)> &writer)
   {
     const std::string temporary = path + ".part";
@@ -91,8 +95,8 @@ namespace rbc_ifem
 
   void
   write_volume_mesh(const Triangulation<3> &triangulation,
-                    const std::string &     directory,
-                    const std::string &     name,
+                    const std::string      &directory,
+                    const std::string      &name,
                     const MPI_Comm          communicator)
   {
     Vector<float> material_id(triangulation.n_active_cells());
@@ -105,45 +109,55 @@ namespace rbc_ifem
     DataOut<3> data_out;
     data_out.attach_triangulation(triangulation);
     data_out.set_flags(fast_vtk_flags());
-    data_out.add_data_vector(material_id, "material_id", DataOut<3>::type_cell_data);
+    data_out.add_data_vector(material_id,
+                             "material_id",
+                             DataOut<3>::type_cell_data);
     data_out.add_data_vector(owner, "rank", DataOut<3>::type_cell_data);
     // Curved cells, so the circles look like circles in ParaView.
     data_out.build_patches(MappingQ<3>(2), 2, DataOut<3>::curved_inner_cells);
-    const std::string pvtu =
-      data_out.write_vtu_with_pvtu_record(directory + "/", name, 0, communicator, 4);
+    const std::string pvtu = data_out.write_vtu_with_pvtu_record(
+      directory + "/", name, 0, communicator, 4);
 
     // The boundary: one piece per rank, joined by a pvtu record on rank 0.
-    const unsigned int rank = Utilities::MPI::this_mpi_process(communicator);
+    const unsigned int rank    = Utilities::MPI::this_mpi_process(communicator);
     const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
-    const auto piece = [&](const unsigned int r) {
+    const auto         piece   = [&](const unsigned int r) {
       return name + "_boundary." + Utilities::int_to_string(r, 4) + ".vtu";
     };
     const auto patches = boundary_patches(triangulation);
-    write_file_atomically(directory + "/" + piece(rank), [&](std::ostream &out) {
-      DataOutBase::write_vtu(patches, {"boundary_id"}, {}, fast_vtk_flags(), out);
-    });
+    write_file_atomically(directory + "/" + piece(rank),
+                          [&](std::ostream &out) {
+                            DataOutBase::write_vtu(patches,
+                                                   {"boundary_id"},
+                                                   {},
+                                                   fast_vtk_flags(),
+                                                   out);
+                          });
 
     if (rank == 0)
       {
         std::vector<std::string> pieces;
         for (unsigned int r = 0; r < n_ranks; ++r)
           pieces.push_back(piece(r));
-        write_file_atomically(directory + "/" + name + "_boundary.pvtu",
-                              [&](std::ostream &out) {
-                                DataOutBase::write_pvtu_record(
-                                  out, pieces, {"boundary_id"}, {}, fast_vtk_flags());
-                              });
+        write_file_atomically(
+          directory + "/" + name + "_boundary.pvtu", [&](std::ostream &out) {
+            DataOutBase::write_pvtu_record(
+              out, pieces, {"boundary_id"}, {}, fast_vtk_flags());
+          });
         write_pvd(directory, name, {{0., pvtu}}, communicator);
-        write_pvd(directory, name + "_boundary", {{0., name + "_boundary.pvtu"}}, communicator);
+        write_pvd(directory,
+                  name + "_boundary",
+                  {{0., name + "_boundary.pvtu"}},
+                  communicator);
       }
   }
 
   std::string
   write_membranes(
-    const std::vector<const Triangulation<2, 3> *> &          surfaces,
-    const MappingQ<2, 3> &                                    mapping,
-    const std::string &                                       directory,
-    const std::string &                                       name,
+    const std::vector<const Triangulation<2, 3> *>           &surfaces,
+    const MappingQ<2, 3>                                     &mapping,
+    const std::string                                        &directory,
+    const std::string                                        &name,
     const MPI_Comm                                            communicator,
     const std::function<void(unsigned int, DataOut<2, 3> &)> &add_fields)
   {
@@ -161,7 +175,9 @@ namespace rbc_ifem
         outputs.push_back(std::make_unique<DataOut<2, 3>>());
         DataOut<2, 3> &data_out = *outputs.back();
         data_out.attach_triangulation(*surfaces[i]);
-        data_out.add_data_vector(cell_index[i], "cell", DataOut<2, 3>::type_cell_data);
+        data_out.add_data_vector(cell_index[i],
+                                 "cell",
+                                 DataOut<2, 3>::type_cell_data);
         if (add_fields)
           add_fields(i, data_out);
         data_out.build_patches(mapping,
@@ -172,7 +188,8 @@ namespace rbc_ifem
       }
     DataOut<2, 3> &all = *outputs[0];
     all.set_flags(fast_vtk_flags());
-    write_file_atomically(directory + "/" + file, [&](std::ostream &out) { all.write_vtu(out); });
+    write_file_atomically(directory + "/" + file,
+                          [&](std::ostream &out) { all.write_vtu(out); });
     return file;
   }
 
@@ -196,7 +213,8 @@ namespace rbc_ifem
     write_file_atomically(directory + "/timing.csv", [&](std::ostream &out) {
       out << "section,calls,wall_seconds\n";
       for (const auto &[section, seconds] : wall)
-        out << '"' << section << "\"," << calls.at(section) << ',' << seconds << '\n';
+        out << '"' << section << "\"," << calls.at(section) << ',' << seconds
+            << '\n';
     });
   }
 } // namespace rbc_ifem

@@ -7,8 +7,8 @@
 namespace rbc_ifem
 {
   CellPopulation::CellPopulation(const std::vector<CellPlacement> &placements,
-                                 const CellParameters &            cells,
-                                 const MembraneParameters &        membrane)
+                                 const CellParameters             &cells,
+                                 const MembraneParameters         &membrane)
     : references(placements,
                  EvansFungShape::named(cells.shape, cells.diameter),
                  cells.surface_refinements)
@@ -72,7 +72,8 @@ namespace rbc_ifem
               }
           }
         for (const auto &dofs : membranes[c]->nodes())
-          result.push_back(Tensor<1, 3>({forces[c][dofs[0]], forces[c][dofs[1]], forces[c][dofs[2]]}));
+          result.push_back(Tensor<1, 3>(
+            {forces[c][dofs[0]], forces[c][dofs[1]], forces[c][dofs[2]]}));
       }
     return result;
   }
@@ -84,7 +85,8 @@ namespace rbc_ifem
   }
 
   void
-  CellPopulation::move(const std::vector<Tensor<1, 3>> &velocities, const double time_step)
+  CellPopulation::move(const std::vector<Tensor<1, 3>> &velocities,
+                       const double                     time_step)
   {
     AssertDimension(velocities.size(), n_membrane_points);
     auto velocity = velocities.begin();
@@ -104,11 +106,12 @@ namespace rbc_ifem
     const auto             surfaces = current_surfaces();
     for (unsigned int c = 0; c < size(); ++c)
       {
-        CellShape &shape = result[c];
-        const SurfaceMeasures measures = measure_surface(*surfaces[c], flat_mapping);
-        shape.centroid   = measures.centroid;
-        shape.area       = membranes[c]->area(x[c]);
-        shape.volume     = membranes[c]->volume(x[c]);
+        CellShape            &shape = result[c];
+        const SurfaceMeasures measures =
+          measure_surface(*surfaces[c], flat_mapping);
+        shape.centroid = measures.centroid;
+        shape.area     = membranes[c]->area(x[c]);
+        shape.volume   = membranes[c]->volume(x[c]);
         double x_min = std::numeric_limits<double>::max(), x_max = -x_min;
         for (const auto &dofs : membranes[c]->nodes())
           {
@@ -116,14 +119,16 @@ namespace rbc_ifem
             x_min            = std::min(x_min, p[0]);
             x_max            = std::max(x_max, p[0]);
             shape.max_radius = std::max(shape.max_radius,
-                                        std::hypot(p[1] - shape.centroid[1], p[2] - shape.centroid[2]));
+                                        std::hypot(p[1] - shape.centroid[1],
+                                                   p[2] - shape.centroid[2]));
           }
-        shape.axial_length = x_max - x_min;
-        shape.deformation_index =
-          (shape.axial_length - 2. * shape.max_radius) / (shape.axial_length + 2. * shape.max_radius);
-        const ShearPlaneEllipse ellipse = shear_plane_ellipse(measures.second_moment);
-        shape.taylor_deformation        = ellipse.taylor_deformation;
-        shape.inclination               = ellipse.inclination;
+        shape.axial_length      = x_max - x_min;
+        shape.deformation_index = (shape.axial_length - 2. * shape.max_radius) /
+                                  (shape.axial_length + 2. * shape.max_radius);
+        const ShearPlaneEllipse ellipse =
+          shear_plane_ellipse(measures.second_moment);
+        shape.taylor_deformation = ellipse.taylor_deformation;
+        shape.inclination        = ellipse.inclination;
       }
     return result;
   }
@@ -177,8 +182,8 @@ namespace rbc_ifem
     std::vector<std::string> files;
     for (unsigned int c = 0; c < size(); ++c)
       {
-        const std::string file =
-          name + "_" + std::to_string(c) + "_" + Utilities::int_to_string(counter, 4);
+        const std::string file = name + "_" + std::to_string(c) + "_" +
+                                 Utilities::int_to_string(counter, 4);
         membranes[c]->write_vtu(x[c], directory, file, {{"force", forces[c]}});
         files.push_back(file + ".vtu");
       }

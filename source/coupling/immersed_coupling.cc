@@ -10,9 +10,10 @@
 
 namespace rbc_ifem
 {
-  ImmersedCoupling::ImmersedCoupling(const parallel::shared::Triangulation<3> &triangulation,
-                                     const Mapping<3> &                        mapping,
-                                     const DoFHandler<3> &                     fluid_dof_handler)
+  ImmersedCoupling::ImmersedCoupling(
+    const parallel::shared::Triangulation<3> &triangulation,
+    const Mapping<3>                         &mapping,
+    const DoFHandler<3>                      &fluid_dof_handler)
     : triangulation(triangulation)
     , dof_handler(fluid_dof_handler)
     , cache(triangulation, mapping)
@@ -32,14 +33,16 @@ namespace rbc_ifem
     for (unsigned int i = 0; i < points.size(); ++i)
       {
         const auto [cell, reference] =
-          GridTools::find_active_cell_around_point(cache, points[i], cell_hints[i]);
+          GridTools::find_active_cell_around_point(cache,
+                                                   points[i],
+                                                   cell_hints[i]);
         if (cell == triangulation.end())
-          throw std::runtime_error("membrane point " + std::to_string(i) + " at (" +
-                                   std::to_string(points[i][0]) + ", " +
-                                   std::to_string(points[i][1]) + ", " +
-                                   std::to_string(points[i][2]) +
-                                   ") µm lies outside the fluid domain: a cell has left it "
-                                   "or touched its wall.");
+          throw std::runtime_error(
+            "membrane point " + std::to_string(i) + " at (" +
+            std::to_string(points[i][0]) + ", " + std::to_string(points[i][1]) +
+            ", " + std::to_string(points[i][2]) +
+            ") µm lies outside the fluid domain: a cell has left it "
+            "or touched its wall.");
         cell_hints[i] = cell;
         if (cell->is_locally_owned())
           particles.insert_particle(points[i], reference, i, cell);
@@ -51,13 +54,15 @@ namespace rbc_ifem
   void
   ImmersedCoupling::for_each_particle_cell(const CellFunction &f) const
   {
-    std::vector<types::global_dof_index> dofs(dof_handler.get_fe().n_dofs_per_cell());
+    std::vector<types::global_dof_index> dofs(
+      dof_handler.get_fe().n_dofs_per_cell());
     // Particles are stored cell by cell: take one cell's at a time.
     auto particle = particles.begin();
     while (particle != particles.end())
       {
         const auto cell = particle->get_surrounding_cell();
-        const typename DoFHandler<3>::active_cell_iterator dof_cell(*cell, &dof_handler);
+        const typename DoFHandler<3>::active_cell_iterator dof_cell(
+          *cell, &dof_handler);
         dof_cell->get_dof_indices(dofs);
         const auto in_cell = particles.particles_in_cell(cell);
         f(dofs, in_cell);
@@ -66,8 +71,8 @@ namespace rbc_ifem
   }
 
   void
-  ImmersedCoupling::spread(const std::vector<Tensor<1, 3>> &   forces,
-                           const AffineConstraints<double> &   constraints,
+  ImmersedCoupling::spread(const std::vector<Tensor<1, 3>>    &forces,
+                           const AffineConstraints<double>    &constraints,
                            TrilinosWrappers::MPI::BlockVector &load) const
   {
     AssertDimension(forces.size(), n_membrane_points);
@@ -78,14 +83,16 @@ namespace rbc_ifem
       for (const auto &p : in_cell)
         for (const auto &[k, c] : velocity_shape_functions)
           cell_load[k] +=
-            forces[p.get_id()][c] * fe.shape_value_component(k, p.get_reference_location(), c);
+            forces[p.get_id()][c] *
+            fe.shape_value_component(k, p.get_reference_location(), c);
       constraints.distribute_local_to_global(cell_load, dofs, load);
     });
     load.compress(VectorOperation::add);
   }
 
   std::vector<Tensor<1, 3>>
-  ImmersedCoupling::interpolate(const TrilinosWrappers::MPI::BlockVector &solution) const
+  ImmersedCoupling::interpolate(
+    const TrilinosWrappers::MPI::BlockVector &solution) const
   {
     // Each point is on one rank; the others add zero.
     const FiniteElement<3> &fe = dof_handler.get_fe();
@@ -94,7 +101,8 @@ namespace rbc_ifem
       for (const auto &p : in_cell)
         for (const auto &[k, c] : velocity_shape_functions)
           velocity[3 * p.get_id() + c] +=
-            solution(dofs[k]) * fe.shape_value_component(k, p.get_reference_location(), c);
+            solution(dofs[k]) *
+            fe.shape_value_component(k, p.get_reference_location(), c);
     });
     Utilities::MPI::sum(velocity, triangulation.get_communicator(), velocity);
     std::vector<Tensor<1, 3>> result(n_membrane_points);

@@ -1,7 +1,7 @@
-#include <rbc_ifem/diffusion/co_diffusion.h>
 #include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/output.h>
 #include <rbc_ifem/base/solver_failure.h>
+#include <rbc_ifem/diffusion/co_diffusion.h>
 
 #include <deal.II/base/function.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -10,9 +10,9 @@
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/grid_tools_cache.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
-#include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/solver_gmres.h>
+#include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 #include <deal.II/numerics/vector_tools.h>
@@ -36,10 +36,10 @@ namespace rbc_ifem
   {
     struct Point
     {
-      unsigned int                           membrane_cell;
-      unsigned int                           q;
+      unsigned int                                 membrane_cell;
+      unsigned int                                 q;
       typename DoFHandler<3>::active_cell_iterator volume_cell;
-      dealii::Point<3>                       reference;
+      dealii::Point<3>                             reference;
     };
 
     /**
@@ -53,7 +53,8 @@ namespace rbc_ifem
       for (auto first = points.begin(); first != points.end();)
         {
           auto last = first;
-          while (last != points.end() && last->membrane_cell == first->membrane_cell &&
+          while (last != points.end() &&
+                 last->membrane_cell == first->membrane_cell &&
                  last->volume_cell == first->volume_cell)
             ++last;
           f(first->membrane_cell, first->volume_cell, first, last);
@@ -61,9 +62,9 @@ namespace rbc_ifem
         }
     }
 
-    QGauss<2>                                         quadrature{3};
-    std::vector<Point>                                points;
-    std::vector<std::vector<double>>                  JxW; ///< [membrane cell][q]
+    QGauss<2>                        quadrature{3};
+    std::vector<Point>               points;
+    std::vector<std::vector<double>> JxW; ///< [membrane cell][q]
     std::vector<std::vector<types::global_dof_index>> multiplier_dofs;
   };
 
@@ -83,7 +84,7 @@ namespace rbc_ifem
       {}
 
       void
-      vmult(TrilinosWrappers::MPI::BlockVector &      dst,
+      vmult(TrilinosWrappers::MPI::BlockVector       &dst,
             const TrilinosWrappers::MPI::BlockVector &src) const
       {
         A.vmult(dst.block(0), src.block(0));
@@ -104,10 +105,11 @@ namespace rbc_ifem
     class AugmentedLagrangianPreconditioner
     {
     public:
-      AugmentedLagrangianPreconditioner(const TrilinosWrappers::SparseMatrix &   B,
-                                        const TrilinosWrappers::MPI::Vector &    gamma_W,
-                                        const TrilinosWrappers::PreconditionAMG &amg,
-                                        const TrilinosWrappers::MPI::Vector &    p_template)
+      AugmentedLagrangianPreconditioner(
+        const TrilinosWrappers::SparseMatrix    &B,
+        const TrilinosWrappers::MPI::Vector     &gamma_W,
+        const TrilinosWrappers::PreconditionAMG &amg,
+        const TrilinosWrappers::MPI::Vector     &p_template)
         : B(B)
         , gamma_W(gamma_W)
         , amg(amg)
@@ -115,7 +117,7 @@ namespace rbc_ifem
       {}
 
       void
-      vmult(TrilinosWrappers::MPI::BlockVector &      dst,
+      vmult(TrilinosWrappers::MPI::BlockVector       &dst,
             const TrilinosWrappers::MPI::BlockVector &src) const
       {
         dst.block(1) = src.block(1);
@@ -127,8 +129,8 @@ namespace rbc_ifem
       }
 
     private:
-      const TrilinosWrappers::SparseMatrix &   B;
-      const TrilinosWrappers::MPI::Vector &    gamma_W;
+      const TrilinosWrappers::SparseMatrix    &B;
+      const TrilinosWrappers::MPI::Vector     &gamma_W;
       const TrilinosWrappers::PreconditionAMG &amg;
       mutable TrilinosWrappers::MPI::Vector    residual;
     };
@@ -145,7 +147,7 @@ namespace rbc_ifem
     class DiagonallyScaled
     {
     public:
-      DiagonallyScaled(const Operator &                          op,
+      DiagonallyScaled(const Operator                           &op,
                        const TrilinosWrappers::MPI::BlockVector &scale)
         : op(op)
         , scale(scale)
@@ -153,7 +155,7 @@ namespace rbc_ifem
       {}
 
       void
-      vmult(TrilinosWrappers::MPI::BlockVector &      dst,
+      vmult(TrilinosWrappers::MPI::BlockVector       &dst,
             const TrilinosWrappers::MPI::BlockVector &src) const
       {
         scaled_src = src;
@@ -163,8 +165,8 @@ namespace rbc_ifem
       }
 
     private:
-      const Operator &                           op;
-      const TrilinosWrappers::MPI::BlockVector & scale;
+      const Operator                            &op;
+      const TrilinosWrappers::MPI::BlockVector  &scale;
       mutable TrilinosWrappers::MPI::BlockVector scaled_src;
     };
   } // namespace
@@ -183,22 +185,30 @@ namespace rbc_ifem
     {
     public:
       explicit FluxVector(const Mapping<2, 3> &mapping)
-        : DataPostprocessorVector<3>("co_flux_vector", update_values | update_quadrature_points)
+        : DataPostprocessorVector<3>("co_flux_vector",
+                                     update_values | update_quadrature_points)
         , mapping(mapping)
       {}
 
       void
-      evaluate_scalar_field(const DataPostprocessorInputs::Scalar<3> &inputs,
-                            std::vector<Vector<double>> &computed) const override
+      evaluate_scalar_field(
+        const DataPostprocessorInputs::Scalar<3> &inputs,
+        std::vector<Vector<double>>              &computed) const override
       {
-        const auto cell = inputs.template get_cell<2>();
+        const auto            cell = inputs.template get_cell<2>();
         std::vector<Point<2>> unit_points(inputs.evaluation_points.size());
-        mapping.transform_points_real_to_unit_cell(cell, inputs.evaluation_points, unit_points);
-        FEValues<2, 3> fe_values(mapping, fe, Quadrature<2>(unit_points), update_normal_vectors);
+        mapping.transform_points_real_to_unit_cell(cell,
+                                                   inputs.evaluation_points,
+                                                   unit_points);
+        FEValues<2, 3> fe_values(mapping,
+                                 fe,
+                                 Quadrature<2>(unit_points),
+                                 update_normal_vectors);
         fe_values.reinit(cell);
         for (unsigned int q = 0; q < unit_points.size(); ++q)
           for (unsigned int d = 0; d < 3; ++d)
-            computed[q](d) = -inputs.solution_values[q] * fe_values.normal_vector(q)[d];
+            computed[q](d) =
+              -inputs.solution_values[q] * fe_values.normal_vector(q)[d];
       }
 
     private:
@@ -207,11 +217,12 @@ namespace rbc_ifem
     };
   } // namespace
 
-  CODiffusion::CODiffusion(const DiffusionParameters &                parameters,
-                           const std::function<double(unsigned int)> &permeability,
-                           const types::boundary_id                   pressure_boundary,
-                           const MPI_Comm                             communicator,
-                           TimerOutput &                              timer)
+  CODiffusion::CODiffusion(
+    const DiffusionParameters                 &parameters,
+    const std::function<double(unsigned int)> &permeability,
+    const types::boundary_id                   pressure_boundary,
+    const MPI_Comm                             communicator,
+    TimerOutput                               &timer)
     : parameters(parameters)
     , permeability(permeability)
     , pressure_boundary(pressure_boundary)
@@ -225,9 +236,9 @@ namespace rbc_ifem
   CODiffusion::~CODiffusion() = default;
 
   void
-  CODiffusion::setup(const parallel::shared::Triangulation<3> &      mesh,
+  CODiffusion::setup(const parallel::shared::Triangulation<3>       &mesh,
                      const std::vector<const Triangulation<2, 3> *> &membranes,
-                     const MappingQ<2, 3> &                          membrane_mapping)
+                     const MappingQ<2, 3> &membrane_mapping)
   {
     TimerOutput::Scope scope(timer, "diffusion: setup");
     this->mesh             = &mesh;
@@ -267,7 +278,8 @@ namespace rbc_ifem
     multiplier_offsets = {0};
     for (const Triangulation<2, 3> *membrane : membranes)
       {
-        multiplier_dof_handlers.push_back(std::make_unique<DoFHandler<2, 3>>(*membrane));
+        multiplier_dof_handlers.push_back(
+          std::make_unique<DoFHandler<2, 3>>(*membrane));
         multiplier_dof_handlers.back()->distribute_dofs(multiplier_fe);
         multiplier_offsets.push_back(multiplier_offsets.back() +
                                      multiplier_dof_handlers.back()->n_dofs());
@@ -285,7 +297,7 @@ namespace rbc_ifem
   CODiffusion::locate_membrane_points()
   {
     coupling = std::make_unique<CouplingData>();
-    FEValues<2, 3> fe_values(*membrane_mapping,
+    FEValues<2, 3>        fe_values(*membrane_mapping,
                              multiplier_fe,
                              coupling->quadrature,
                              update_quadrature_points | update_JxW_values);
@@ -293,7 +305,8 @@ namespace rbc_ifem
     std::vector<Point<3>> points;
     double                area = 0.;
     for (unsigned int m = 0; m < membranes.size(); ++m)
-      for (const auto &cell : multiplier_dof_handlers[m]->active_cell_iterators())
+      for (const auto &cell :
+           multiplier_dof_handlers[m]->active_cell_iterators())
         {
           fe_values.reinit(cell);
           points.insert(points.end(),
@@ -302,7 +315,8 @@ namespace rbc_ifem
           coupling->JxW.push_back(fe_values.get_JxW_values());
           for (const double dA : fe_values.get_JxW_values())
             area += dA;
-          std::vector<types::global_dof_index> dofs(multiplier_fe.n_dofs_per_cell());
+          std::vector<types::global_dof_index> dofs(
+            multiplier_fe.n_dofs_per_cell());
           cell->get_dof_indices(dofs);
           for (auto &dof : dofs)
             dof += multiplier_offsets[m];
@@ -325,23 +339,27 @@ namespace rbc_ifem
           {
             std::ostringstream where;
             where << "membrane point (" << points[k] << ')';
-            throw InputError("Layout",
-                             where.str(),
-                             "this point lies outside the diffusion mesh; every "
-                             "cell must lie inside the capillary.");
+            throw InputError(
+              "Layout",
+              where.str(),
+              "this point lies outside the diffusion mesh; every "
+              "cell must lie inside the capillary.");
           }
         hint = cell;
         coupling->points.push_back(
           {k / n_q,
            k % n_q,
-           typename DoFHandler<3>::active_cell_iterator(&*mesh, cell->level(), cell->index(), &dof_handler),
+           typename DoFHandler<3>::active_cell_iterator(
+             &*mesh, cell->level(), cell->index(), &dof_handler),
            reference});
       }
     std::sort(coupling->points.begin(),
               coupling->points.end(),
               [](const CouplingData::Point &a, const CouplingData::Point &b) {
-                return std::make_pair(a.membrane_cell, a.volume_cell->active_cell_index()) <
-                       std::make_pair(b.membrane_cell, b.volume_cell->active_cell_index());
+                return std::make_pair(a.membrane_cell,
+                                      a.volume_cell->active_cell_index()) <
+                       std::make_pair(b.membrane_cell,
+                                      b.volume_cell->active_cell_index());
               });
 
     // The multiplier space must not be finer than the volume mesh around
@@ -349,60 +367,78 @@ namespace rbc_ifem
     // cells 1.7 times smaller FGMRES no longer converges.
     const double membrane_cell_size = std::sqrt(area / coupling->JxW.size());
     double       volume_cell_size   = 0.;
-    coupling->for_each_run([&](const unsigned int, const auto &cell, const auto &first, const auto &last) {
+    coupling->for_each_run([&](const unsigned int,
+                               const auto &cell,
+                               const auto &first,
+                               const auto &last) {
       volume_cell_size += (last - first) * cell->diameter() / std::sqrt(3.);
     });
     volume_cell_size /= coupling->points.size();
     if (volume_cell_size > 1.4 * membrane_cell_size)
       {
         std::ostringstream sizes;
-        sizes << std::setprecision(2) << "membrane cells of " << membrane_cell_size
-              << " µm in diffusion mesh cells of " << volume_cell_size << " µm";
-        throw InputError("Cells/Surface refinements",
-                         sizes.str(),
-                         "the diffusion mesh around the membranes must be about as fine "
-                         "as the membranes or finer (the multiplier's inf-sup condition); "
-                         "raise Mesh/Diffusion band refinements or lower Cells/Surface "
-                         "refinements.");
+        sizes << std::setprecision(2) << "membrane cells of "
+              << membrane_cell_size << " µm in diffusion mesh cells of "
+              << volume_cell_size << " µm";
+        throw InputError(
+          "Cells/Surface refinements",
+          sizes.str(),
+          "the diffusion mesh around the membranes must be about as fine "
+          "as the membranes or finer (the multiplier's inf-sup condition); "
+          "raise Mesh/Diffusion band refinements or lower Cells/Surface "
+          "refinements.");
       }
 
     constraint_scale =
-      permeability(coupling->points.front().volume_cell->material_id()) / membrane_cell_size;
+      permeability(coupling->points.front().volume_cell->material_id()) /
+      membrane_cell_size;
   }
 
   void
   CODiffusion::setup_matrices()
   {
     const types::global_dof_index n_multipliers = multiplier_offsets.back();
-    const unsigned int            rank          = Utilities::MPI::this_mpi_process(communicator);
+    const unsigned int rank = Utilities::MPI::this_mpi_process(communicator);
 
     // B with every row, on every rank: it is small, and its rows tell which
     // P DoFs the augmentation Bᵀ W B couples.
     AffineConstraints<double> no_constraints;
     no_constraints.close();
-    DynamicSparsityPattern    b_pattern(n_multipliers, dof_handler.n_dofs());
+    DynamicSparsityPattern b_pattern(n_multipliers, dof_handler.n_dofs());
     std::vector<types::global_dof_index> volume_dofs(fe.n_dofs_per_cell());
     coupling->for_each_run([&](const unsigned int membrane_cell,
-                               const auto &       volume_cell,
+                               const auto        &volume_cell,
                                const auto &,
                                const auto &) {
       volume_cell->get_dof_indices(volume_dofs);
       for (const auto dof : volume_dofs)
         AssertThrow(!constraints.is_inhomogeneously_constrained(dof),
-                    ExcMessage("a membrane touches the boundary where P = P_A"));
+                    ExcMessage(
+                      "a membrane touches the boundary where P = P_A"));
       no_constraints.add_entries_local_to_global(
-        coupling->multiplier_dofs[membrane_cell], constraints, volume_dofs, b_pattern, false);
+        coupling->multiplier_dofs[membrane_cell],
+        constraints,
+        volume_dofs,
+        b_pattern,
+        false);
     });
 
     IndexSet relevant_dofs;
     DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
-    TrilinosWrappers::SparsityPattern a_pattern(owned_dofs, owned_dofs, relevant_dofs, communicator);
-    DoFTools::make_sparsity_pattern(dof_handler, a_pattern, constraints, false, rank);
-    TrilinosWrappers::SparsityPattern c_pattern(owned_multipliers, owned_dofs, communicator);
+    TrilinosWrappers::SparsityPattern a_pattern(owned_dofs,
+                                                owned_dofs,
+                                                relevant_dofs,
+                                                communicator);
+    DoFTools::make_sparsity_pattern(
+      dof_handler, a_pattern, constraints, false, rank);
+    TrilinosWrappers::SparsityPattern c_pattern(owned_multipliers,
+                                                owned_dofs,
+                                                communicator);
     for (types::global_dof_index i = 0; i < n_multipliers; ++i)
       {
         std::vector<types::global_dof_index> columns;
-        for (auto entry = b_pattern.begin(i); entry != b_pattern.end(i); ++entry)
+        for (auto entry = b_pattern.begin(i); entry != b_pattern.end(i);
+             ++entry)
           columns.push_back(entry->column());
         if (owned_multipliers.is_element(i))
           c_pattern.add_entries(i, columns.begin(), columns.end());
@@ -434,7 +470,7 @@ namespace rbc_ifem
     assemble_coupling();
     assemble_augmentation();
 
-    TimerOutput::Scope                                amg_scope(timer, "diffusion: AMG setup");
+    TimerOutput::Scope amg_scope(timer, "diffusion: AMG setup");
     TrilinosWrappers::PreconditionAMG::AdditionalData amg_data;
     amg_data.elliptic              = true;
     amg_data.higher_order_elements = fe.degree > 1;
@@ -446,11 +482,14 @@ namespace rbc_ifem
   void
   CODiffusion::assemble_stiffness()
   {
-    const QGauss<3>    quadrature(fe.degree + 1);
-    FEValues<3>        fe_values(mapping, fe, quadrature, update_gradients | update_JxW_values);
-    const unsigned int n      = fe.n_dofs_per_cell();
-    FullMatrix<double> cell_matrix(n, n);
-    Vector<double>     cell_rhs(n);
+    const QGauss<3>                      quadrature(fe.degree + 1);
+    FEValues<3>                          fe_values(mapping,
+                          fe,
+                          quadrature,
+                          update_gradients | update_JxW_values);
+    const unsigned int                   n = fe.n_dofs_per_cell();
+    FullMatrix<double>                   cell_matrix(n, n);
+    Vector<double>                       cell_rhs(n);
     std::vector<types::global_dof_index> dofs(n);
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -462,9 +501,11 @@ namespace rbc_ifem
             for (unsigned int i = 0; i < n; ++i)
               for (unsigned int j = 0; j < n; ++j)
                 cell_matrix(i, j) += alpha_D * fe_values.shape_grad(i, q) *
-                                     fe_values.shape_grad(j, q) * fe_values.JxW(q);
+                                     fe_values.shape_grad(j, q) *
+                                     fe_values.JxW(q);
           cell->get_dof_indices(dofs);
-          constraints.distribute_local_to_global(cell_matrix, cell_rhs, dofs, stiffness, rhs.block(0));
+          constraints.distribute_local_to_global(
+            cell_matrix, cell_rhs, dofs, stiffness, rhs.block(0));
         }
     stiffness.compress(VectorOperation::add);
     rhs.compress(VectorOperation::add);
@@ -475,17 +516,18 @@ namespace rbc_ifem
   {
     AffineConstraints<double> no_constraints;
     no_constraints.close();
-    const unsigned int n_mu = multiplier_fe.n_dofs_per_cell();
-    const unsigned int n_p  = fe.n_dofs_per_cell();
+    const unsigned int                   n_mu = multiplier_fe.n_dofs_per_cell();
+    const unsigned int                   n_p  = fe.n_dofs_per_cell();
     std::vector<types::global_dof_index> volume_dofs(n_p);
     coupling->for_each_run([&](const unsigned int membrane_cell,
-                               const auto &       volume_cell,
-                               const auto &       first,
-                               const auto &       last) {
+                               const auto        &volume_cell,
+                               const auto        &first,
+                               const auto        &last) {
       FullMatrix<double> local(n_mu, n_p);
       for (auto point = first; point != last; ++point)
         {
-          const double    dA = constraint_scale * coupling->JxW[membrane_cell][point->q];
+          const double dA =
+            constraint_scale * coupling->JxW[membrane_cell][point->q];
           const Point<2> &xi = coupling->quadrature.point(point->q);
           for (unsigned int j = 0; j < n_p; ++j)
             {
@@ -495,15 +537,18 @@ namespace rbc_ifem
             }
         }
       volume_cell->get_dof_indices(volume_dofs);
-      no_constraints.distribute_local_to_global(local,
-                                                coupling->multiplier_dofs[membrane_cell],
-                                                constraints,
-                                                volume_dofs,
-                                                full_coupling_matrix);
+      no_constraints.distribute_local_to_global(
+        local,
+        coupling->multiplier_dofs[membrane_cell],
+        constraints,
+        volume_dofs,
+        full_coupling_matrix);
     });
     // The distributed copy holds the rows this rank owns.
     for (const auto i : owned_multipliers)
-      for (auto entry = full_coupling_matrix.begin(i); entry != full_coupling_matrix.end(i); ++entry)
+      for (auto entry = full_coupling_matrix.begin(i);
+           entry != full_coupling_matrix.end(i);
+           ++entry)
         coupling_matrix.set(i, entry->column(), entry->value());
     coupling_matrix.compress(VectorOperation::insert);
 
@@ -514,7 +559,8 @@ namespace rbc_ifem
       for (unsigned int q = 0; q < n_q; ++q)
         for (unsigned int i = 0; i < n_mu; ++i)
           multiplier_mass[coupling->multiplier_dofs[c][i]] +=
-            multiplier_fe.shape_value(i, coupling->quadrature.point(q)) * coupling->JxW[c][q];
+            multiplier_fe.shape_value(i, coupling->quadrature.point(q)) *
+            coupling->JxW[c][q];
     for (const auto i : owned_multipliers)
       multiplier_weights[i] =
         parameters.augmentation / (constraint_scale * multiplier_mass[i]);
@@ -531,19 +577,26 @@ namespace rbc_ifem
     std::vector<double>                  values;
     for (types::global_dof_index i = 0; i < full_coupling_matrix.m(); ++i)
       {
-        const double weight = parameters.augmentation / (constraint_scale * multiplier_mass[i]);
-        for (auto row = full_coupling_matrix.begin(i); row != full_coupling_matrix.end(i); ++row)
+        const double weight =
+          parameters.augmentation / (constraint_scale * multiplier_mass[i]);
+        for (auto row = full_coupling_matrix.begin(i);
+             row != full_coupling_matrix.end(i);
+             ++row)
           if (owned_dofs.is_element(row->column()))
             {
               columns.clear();
               values.clear();
-              for (auto entry = full_coupling_matrix.begin(i); entry != full_coupling_matrix.end(i);
+              for (auto entry = full_coupling_matrix.begin(i);
+                   entry != full_coupling_matrix.end(i);
                    ++entry)
                 {
                   columns.push_back(entry->column());
                   values.push_back(weight * row->value() * entry->value());
                 }
-              stiffness.add(row->column(), columns.size(), columns.data(), values.data());
+              stiffness.add(row->column(),
+                            columns.size(),
+                            columns.data(),
+                            values.data());
             }
       }
     stiffness.compress(VectorOperation::add);
@@ -558,7 +611,8 @@ namespace rbc_ifem
     for (const auto i : owned_dofs)
       scale.block(0)[i] = 1. / std::sqrt(stiffness.diag_element(i));
     for (const auto i : owned_multipliers)
-      scale.block(1)[i] = std::sqrt(multiplier_weights[i] / parameters.augmentation);
+      scale.block(1)[i] =
+        std::sqrt(multiplier_weights[i] / parameters.augmentation);
     scale.compress(VectorOperation::insert);
     for (unsigned int b = 0; b < 2; ++b)
       for (const auto i : scale.block(b).locally_owned_elements())
@@ -570,29 +624,31 @@ namespace rbc_ifem
                                                            multiplier_weights,
                                                            amg,
                                                            rhs.block(0));
-    TrilinosWrappers::MPI::BlockVector scaled_rhs(rhs);
+    TrilinosWrappers::MPI::BlockVector      scaled_rhs(rhs);
     scaled_rhs.scale(scale);
     SolverControl control(parameters.max_linear_iterations,
                           parameters.linear_tolerance * scaled_rhs.l2_norm());
     SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(
-      control, SolverFGMRES<TrilinosWrappers::MPI::BlockVector>::AdditionalData(100));
+      control,
+      SolverFGMRES<TrilinosWrappers::MPI::BlockVector>::AdditionalData(100));
     solution = 0.;
     try
       {
         solver.solve(DiagonallyScaled<SaddlePointOperator>(op, scale),
                      solution,
                      scaled_rhs,
-                     DiagonallyScaled<AugmentedLagrangianPreconditioner>(preconditioner,
-                                                                         inverse_scale));
+                     DiagonallyScaled<AugmentedLagrangianPreconditioner>(
+                       preconditioner, inverse_scale));
       }
     catch (const SolverControl::NoConvergence &e)
       {
-        throw SolverFailure("CO diffusion: FGMRES did not converge in " +
-                            std::to_string(e.last_step) + " iterations (residual " +
-                            Utilities::to_string(e.last_residual) + ", wanted " +
-                            Utilities::to_string(control.tolerance()) +
-                            "). Raise Diffusion/Max linear iterations, or check "
-                            "that the membranes are resolved by the mesh.");
+        throw SolverFailure(
+          "CO diffusion: FGMRES did not converge in " +
+          std::to_string(e.last_step) + " iterations (residual " +
+          Utilities::to_string(e.last_residual) + ", wanted " +
+          Utilities::to_string(control.tolerance()) +
+          "). Raise Diffusion/Max linear iterations, or check "
+          "that the membranes are resolved by the mesh.");
       }
     solution.scale(scale);
     iterations = control.last_step();
@@ -607,7 +663,8 @@ namespace rbc_ifem
   {
     // λ = σ λ_s: the unknown is the multiplier of the scaled rows σ B.
     TrilinosWrappers::MPI::Vector all(owned_multipliers,
-                                      complete_index_set(multiplier_offsets.back()),
+                                      complete_index_set(
+                                        multiplier_offsets.back()),
                                       communicator);
     all = solution.block(1);
     multiplier_values.reinit(multiplier_offsets.back());
@@ -626,9 +683,14 @@ namespace rbc_ifem
     TrilinosWrappers::MPI::Vector P(owned_dofs, relevant_dofs, communicator);
     P = solution.block(0);
     const IndexSet boundary_dofs =
-      DoFTools::extract_boundary_dofs(dof_handler, ComponentMask(), {pressure_boundary});
-    const QGauss<3> quadrature(fe.degree + 1);
-    FEValues<3>     fe_values(mapping, fe, quadrature, update_gradients | update_JxW_values);
+      DoFTools::extract_boundary_dofs(dof_handler,
+                                      ComponentMask(),
+                                      {pressure_boundary});
+    const QGauss<3>                      quadrature(fe.degree + 1);
+    FEValues<3>                          fe_values(mapping,
+                          fe,
+                          quadrature,
+                          update_gradients | update_JxW_values);
     std::vector<Tensor<1, 3>>            gradients(quadrature.size());
     std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
     double                               local_flow = 0.;
@@ -646,7 +708,8 @@ namespace rbc_ifem
           for (unsigned int i = 0; i < dofs.size(); ++i)
             if (boundary_dofs.is_element(dofs[i]))
               for (const unsigned int q : fe_values.quadrature_point_indices())
-                local_flow += alpha_D * gradients[q] * fe_values.shape_grad(i, q) * fe_values.JxW(q);
+                local_flow += alpha_D * gradients[q] *
+                              fe_values.shape_grad(i, q) * fe_values.JxW(q);
         }
     alveolar_flow = Utilities::MPI::sum(local_flow, communicator);
   }
@@ -711,11 +774,13 @@ namespace rbc_ifem
     data_out.attach_dof_handler(dof_handler);
     data_out.set_flags(fast_vtk_flags());
     data_out.add_data_vector(P, "co_pressure");
-    data_out.add_data_vector(material_id, "material_id", DataOut<3>::type_cell_data);
+    data_out.add_data_vector(material_id,
+                             "material_id",
+                             DataOut<3>::type_cell_data);
     data_out.build_patches(mapping, fe.degree);
     OutputFiles files;
-    files.pressure =
-      data_out.write_vtu_with_pvtu_record(directory + "/", name, counter, communicator, 4);
+    files.pressure = data_out.write_vtu_with_pvtu_record(
+      directory + "/", name, counter, communicator, 4);
 
     std::vector<Vector<double>> flux(membranes.size());
     for (unsigned int m = 0; m < membranes.size(); ++m)
@@ -725,15 +790,20 @@ namespace rbc_ifem
           flux[m][i] = multiplier_values[multiplier_offsets[m] + i];
       }
     const FluxVector flux_vector(*membrane_mapping);
-    files.membranes = write_membranes(membranes,
-                    *membrane_mapping,
-                    directory,
-                    name + "_membranes_" + Utilities::int_to_string(counter, 4),
-                    communicator,
-                    [&](const unsigned int m, DataOut<2, 3> &membrane_out) {
-                      membrane_out.add_data_vector(*multiplier_dof_handlers[m], flux[m], "co_flux");
-                      membrane_out.add_data_vector(*multiplier_dof_handlers[m], flux[m], flux_vector);
-                    });
+    files.membranes = write_membranes(
+      membranes,
+      *membrane_mapping,
+      directory,
+      name + "_membranes_" + Utilities::int_to_string(counter, 4),
+      communicator,
+      [&](const unsigned int m, DataOut<2, 3> &membrane_out) {
+        membrane_out.add_data_vector(*multiplier_dof_handlers[m],
+                                     flux[m],
+                                     "co_flux");
+        membrane_out.add_data_vector(*multiplier_dof_handlers[m],
+                                     flux[m],
+                                     flux_vector);
+      });
     return files;
   }
 } // namespace rbc_ifem

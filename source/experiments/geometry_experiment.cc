@@ -1,7 +1,7 @@
-#include <rbc_ifem/geometry/capillary_mesh.h>
-#include <rbc_ifem/experiments/geometry_experiment.h>
 #include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/output.h>
+#include <rbc_ifem/experiments/geometry_experiment.h>
+#include <rbc_ifem/geometry/capillary_mesh.h>
 
 #include <iomanip>
 #include <sstream>
@@ -16,7 +16,8 @@ namespace rbc_ifem
     , timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times)
     , layout(parameters.layout, parameters.geometry, parameters.cells)
     , membranes(layout.placements(),
-                EvansFungShape::named(parameters.cells.shape, parameters.cells.diameter),
+                EvansFungShape::named(parameters.cells.shape,
+                                      parameters.cells.diameter),
                 parameters.cells.surface_refinements)
     , fluid_mesh(communicator,
                  Triangulation<3>::none,
@@ -52,9 +53,10 @@ namespace rbc_ifem
   {
     TimerOutput::Scope scope(timer, "clearance check");
     pcout << "  membranes: " << membranes.size() << " x "
-          << (membranes.size() == 0 ? 0 : membranes.surfaces()[0]->n_active_cells())
-          << " quadrilaterals; tube hematocrit " << layout.hematocrit(membranes.volumes())
-          << std::endl;
+          << (membranes.size() == 0 ? 0 :
+                                      membranes.surfaces()[0]->n_active_cells())
+          << " quadrilaterals; tube hematocrit "
+          << layout.hematocrit(membranes.volumes()) << std::endl;
     const Clearance clearance =
       membranes.require_clearance(parameters.geometry.capillary_radius);
     pcout << "  clearance: nearest membranes " << clearance.min_cell_gap
@@ -62,7 +64,8 @@ namespace rbc_ifem
     if (membranes.size() > 1)
       pcout << " (cells " << clearance.closest_cells.first << " and "
             << clearance.closest_cells.second << ')';
-    pcout << ", nearest wall " << clearance.min_wall_gap << " µm away" << std::endl;
+    pcout << ", nearest wall " << clearance.min_wall_gap << " µm away"
+          << std::endl;
   }
 
   void
@@ -102,18 +105,27 @@ namespace rbc_ifem
     create_output_directory(directory, communicator);
 
     write_volume_mesh(fluid_mesh, directory, "fluid_mesh", communicator);
-    write_volume_mesh(diffusion_mesh, directory, "diffusion_mesh", communicator);
-    const std::string membrane_file =
-      write_membranes(membranes.surfaces(), membranes.mapping(), directory, "membranes", communicator);
+    write_volume_mesh(diffusion_mesh,
+                      directory,
+                      "diffusion_mesh",
+                      communicator);
+    const std::string membrane_file = write_membranes(membranes.surfaces(),
+                                                      membranes.mapping(),
+                                                      directory,
+                                                      "membranes",
+                                                      communicator);
     write_pvd(directory, "membranes", {{0., membrane_file}}, communicator);
 
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
       {
-        write_file_atomically(directory + "/parameters.prm", [&](std::ostream &out) {
-          prm.print_parameters(out, ParameterHandler::PRM);
+        write_file_atomically(directory + "/parameters.prm",
+                              [&](std::ostream &out) {
+                                prm.print_parameters(out,
+                                                     ParameterHandler::PRM);
+                              });
+        write_file_atomically(directory + "/cells.csv", [&](std::ostream &out) {
+          membranes.write_table(out);
         });
-        write_file_atomically(directory + "/cells.csv",
-                              [&](std::ostream &out) { membranes.write_table(out); });
       }
     pcout << "  wrote " << directory << "/: parameters.prm, cells.csv, "
           << "fluid_mesh.pvd, diffusion_mesh.pvd (+ _boundary), membranes.pvd, "

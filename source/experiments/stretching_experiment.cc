@@ -1,8 +1,8 @@
+#include <rbc_ifem/base/output.h>
+#include <rbc_ifem/experiments/stretching_experiment.h>
 #include <rbc_ifem/geometry/cell_surface.h>
 #include <rbc_ifem/membrane/membrane.h>
 #include <rbc_ifem/membrane/membrane_equilibrium.h>
-#include <rbc_ifem/base/output.h>
-#include <rbc_ifem/experiments/stretching_experiment.h>
 
 #include <deal.II/base/timer.h>
 #include <deal.II/base/utilities.h>
@@ -24,8 +24,8 @@ namespace rbc_ifem
   Vector<double>
   StretchingExperiment::bead_forces(const Membrane &membrane) const
   {
-    const Vector<double> &X     = membrane.reference_positions();
-    const auto &          nodes = membrane.nodes();
+    const Vector<double>     &X     = membrane.reference_positions();
+    const auto               &nodes = membrane.nodes();
     const std::vector<double> areas = membrane.nodal_areas(X);
     const double total = std::accumulate(areas.begin(), areas.end(), 0.);
 
@@ -33,9 +33,11 @@ namespace rbc_ifem
     // holds the attached fraction of the area.
     std::vector<unsigned int> order(nodes.size());
     std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(), [&](const unsigned int a, const unsigned int b) {
-      return X[nodes[a][0]] < X[nodes[b][0]];
-    });
+    std::sort(order.begin(),
+              order.end(),
+              [&](const unsigned int a, const unsigned int b) {
+                return X[nodes[a][0]] < X[nodes[b][0]];
+              });
     Vector<double> f(X.size());
     const double   wanted = parameters.stretching.attached_fraction * total;
     for (const int side : {-1, 1})
@@ -44,7 +46,8 @@ namespace rbc_ifem
         double                    held = 0.;
         for (unsigned int k = 0; k < order.size() && held < wanted; ++k)
           {
-            const unsigned int node = side < 0 ? order[k] : order[order.size() - 1 - k];
+            const unsigned int node =
+              side < 0 ? order[k] : order[order.size() - 1 - k];
             patch.push_back(node);
             held += areas[node];
           }
@@ -58,17 +61,22 @@ namespace rbc_ifem
   StretchingExperiment::run(const ParameterHandler &prm)
   {
     const StretchingParameters &s = parameters.stretching;
-    pcout << "rbc-ifem: experiment 'stretching' (" << parameters.membrane.law << ", G = "
-          << parameters.membrane.shear_modulus << " pN/µm, K = "
-          << parameters.membrane.area_dilation_modulus << " pN/µm, κ = "
-          << parameters.membrane.bending_modulus << " pN µm)" << std::endl;
+    pcout << "rbc-ifem: experiment 'stretching' (" << parameters.membrane.law
+          << ", G = " << parameters.membrane.shear_modulus
+          << " pN/µm, K = " << parameters.membrane.area_dilation_modulus
+          << " pN/µm, κ = " << parameters.membrane.bending_modulus << " pN µm)"
+          << std::endl;
     if (Utilities::MPI::this_mpi_process(communicator) != 0)
       return;
 
-    TimerOutput         timer(MPI_COMM_SELF, pcout, TimerOutput::never, TimerOutput::wall_times);
+    TimerOutput         timer(MPI_COMM_SELF,
+                      pcout,
+                      TimerOutput::never,
+                      TimerOutput::wall_times);
     Triangulation<2, 3> surface;
     create_cell_surface(surface,
-                        EvansFungShape::named(parameters.cells.shape, parameters.cells.diameter),
+                        EvansFungShape::named(parameters.cells.shape,
+                                              parameters.cells.diameter),
                         CellPlacement{Point<3>(), Tensor<1, 3>({0., 0., 1.})},
                         parameters.cells.surface_refinements);
     const Membrane       membrane(surface, parameters.membrane);
@@ -76,12 +84,13 @@ namespace rbc_ifem
     Vector<double>       x(membrane.reference_positions());
     pcout << "  membrane: " << surface.n_active_cells() << " cells, "
           << membrane.get_dof_handler().n_dofs() << " DoFs; area "
-          << membrane.reference_area() << " µm², volume " << membrane.reference_volume()
-          << " µm³" << std::endl;
+          << membrane.reference_area() << " µm², volume "
+          << membrane.reference_volume() << " µm³" << std::endl;
 
     std::ostringstream table;
-    table << "force,axial_diameter,transverse_diameter,area,volume,iterations,residual\n"
-          << std::setprecision(10);
+    table
+      << "force,axial_diameter,transverse_diameter,area,volume,iterations,residual\n"
+      << std::setprecision(10);
     std::vector<std::pair<double, std::string>> shapes;
     std::vector<Vector<double>>                 equilibria;
     for (unsigned int step = 0; step <= s.n_force_steps; ++step)
@@ -92,7 +101,8 @@ namespace rbc_ifem
         EquilibriumReport report;
         {
           TimerOutput::Scope scope(timer, "equilibrium");
-          report = find_equilibrium(membrane, f, x, s.tolerance, s.max_iterations);
+          report =
+            find_equilibrium(membrane, f, x, s.tolerance, s.max_iterations);
         }
         double x_min = 1e300, x_max = -1e300, y_min = 1e300, y_max = -1e300;
         for (const auto &dofs : membrane.nodes())
@@ -103,15 +113,18 @@ namespace rbc_ifem
             y_max = std::max(y_max, x[dofs[1]]);
           }
         const double area = membrane.area(x), volume = membrane.volume(x);
-        pcout << "  F = " << std::setw(6) << force << " pN: " << std::setw(5) << report.iterations
-              << " L-BFGS iterations, residual " << report.residual
-              << " pN; axial " << x_max - x_min << " µm, transverse " << y_max - y_min
-              << " µm, area " << area / membrane.reference_area() << " A0, volume "
+        pcout << "  F = " << std::setw(6) << force << " pN: " << std::setw(5)
+              << report.iterations << " L-BFGS iterations, residual "
+              << report.residual << " pN; axial " << x_max - x_min
+              << " µm, transverse " << y_max - y_min << " µm, area "
+              << area / membrane.reference_area() << " A0, volume "
               << volume / membrane.reference_volume() << " V0" << std::endl;
-        table << force << ',' << x_max - x_min << ',' << y_max - y_min << ',' << area << ','
-              << volume << ',' << report.iterations << ',' << report.residual << '\n';
+        table << force << ',' << x_max - x_min << ',' << y_max - y_min << ','
+              << area << ',' << volume << ',' << report.iterations << ','
+              << report.residual << '\n';
         equilibria.push_back(x);
-        shapes.emplace_back(force, "stretch_" + Utilities::int_to_string(step, 3));
+        shapes.emplace_back(force,
+                            "stretch_" + Utilities::int_to_string(step, 3));
       }
 
     // Written only now: a failed equilibrium leaves nothing behind.
@@ -126,13 +139,16 @@ namespace rbc_ifem
         }
     }
     write_pvd(directory, "stretch", shapes, MPI_COMM_SELF);
-    write_file_atomically(directory + "/stretch.csv", [&](std::ostream &out) { out << table.str(); });
-    write_file_atomically(directory + "/parameters.prm", [&](std::ostream &out) {
-      prm.print_parameters(out, ParameterHandler::PRM);
-    });
+    write_file_atomically(directory + "/stretch.csv",
+                          [&](std::ostream &out) { out << table.str(); });
+    write_file_atomically(directory + "/parameters.prm",
+                          [&](std::ostream &out) {
+                            prm.print_parameters(out, ParameterHandler::PRM);
+                          });
     write_timing(timer, directory, MPI_COMM_SELF);
-    pcout << "  wrote " << directory
-          << "/: stretch.csv, stretch.pvd (+ stretch_*.vtu), parameters.prm, timing.csv"
-          << std::endl;
+    pcout
+      << "  wrote " << directory
+      << "/: stretch.csv, stretch.pvd (+ stretch_*.vtu), parameters.prm, timing.csv"
+      << std::endl;
   }
 } // namespace rbc_ifem

@@ -1,8 +1,8 @@
-#include <rbc_ifem/geometry/capillary_mesh.h>
-#include <rbc_ifem/fluid/fluid_problem.h>
 #include <rbc_ifem/base/output.h>
 #include <rbc_ifem/base/solver_failure.h>
+#include <rbc_ifem/fluid/fluid_problem.h>
 #include <rbc_ifem/fluid/stokes_preconditioner.h>
+#include <rbc_ifem/geometry/capillary_mesh.h>
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_renumbering.h>
@@ -48,7 +48,8 @@ namespace rbc_ifem
         case 0:
           return 2. * mean_speed * (1. - r2) - frame_velocity;
         case 3:
-          return 8. * viscosity * mean_speed * (length - p[0]) / (radius * radius);
+          return 8. * viscosity * mean_speed * (length - p[0]) /
+                 (radius * radius);
         default:
           return 0.;
       }
@@ -68,12 +69,14 @@ namespace rbc_ifem
 
 
   FlowDrive
-  FlowDrive::capillary(const FluidParameters &fluid, const GeometryParameters &geometry)
+  FlowDrive::capillary(const FluidParameters    &fluid,
+                       const GeometryParameters &geometry)
   {
     FlowDrive drive;
-    drive.dirichlet[FluidBoundary::wall] = std::make_shared<Functions::ZeroFunction<3>>(4);
-    drive.dirichlet[FluidBoundary::inlet] =
-      std::make_shared<PoiseuilleFlow>(fluid.inlet_mean_speed, 0., fluid.viscosity, geometry);
+    drive.dirichlet[FluidBoundary::wall] =
+      std::make_shared<Functions::ZeroFunction<3>>(4);
+    drive.dirichlet[FluidBoundary::inlet] = std::make_shared<PoiseuilleFlow>(
+      fluid.inlet_mean_speed, 0., fluid.viscosity, geometry);
     return drive;
   }
 
@@ -81,18 +84,22 @@ namespace rbc_ifem
   FlowDrive::shear(const double shear_rate)
   {
     FlowDrive drive;
-    drive.dirichlet[FluidBoundary::wall] = std::make_shared<SimpleShearFlow>(shear_rate);
+    drive.dirichlet[FluidBoundary::wall] =
+      std::make_shared<SimpleShearFlow>(shear_rate);
     return drive;
   }
 
 
   namespace
   {
-    /// scale (v(p) - U e_x): a drive's velocity seen from a frame moving with U.
+    /// scale (v(p) - U e_x): a drive's velocity seen from a frame moving with
+    /// U.
     class FrameVelocity : public Function<3>
     {
     public:
-      FrameVelocity(const Function<3> &velocity, const double frame_velocity, const double scale)
+      FrameVelocity(const Function<3> &velocity,
+                    const double       frame_velocity,
+                    const double       scale)
         : Function<3>(4)
         , velocity(velocity)
         , frame_velocity(frame_velocity)
@@ -102,7 +109,8 @@ namespace rbc_ifem
       double
       value(const Point<3> &p, const unsigned int component) const override
       {
-        return scale * (velocity.value(p, component) - (component == 0 ? frame_velocity : 0.));
+        return scale * (velocity.value(p, component) -
+                        (component == 0 ? frame_velocity : 0.));
       }
 
     private:
@@ -112,11 +120,12 @@ namespace rbc_ifem
   } // namespace
 
 
-  FluidProblem::FluidProblem(const parallel::shared::Triangulation<3> &triangulation,
-                             const FluidParameters &                   parameters,
-                             const FlowDrive &                         drive,
-                             const double                              time_step,
-                             TimerOutput &                             timer)
+  FluidProblem::FluidProblem(
+    const parallel::shared::Triangulation<3> &triangulation,
+    const FluidParameters                    &parameters,
+    const FlowDrive                          &drive,
+    const double                              time_step,
+    TimerOutput                              &timer)
     : parameters(parameters)
     , drive(drive)
     , time_step(time_step)
@@ -152,12 +161,14 @@ namespace rbc_ifem
     DoFRenumbering::component_wise(dof_handler, block_component);
     const std::vector<types::global_dof_index> dofs_per_block =
       DoFTools::count_dofs_per_fe_block(dof_handler, block_component);
-    const types::global_dof_index n_v = dofs_per_block[0], n_p = dofs_per_block[1];
+    const types::global_dof_index n_v = dofs_per_block[0],
+                                  n_p = dofs_per_block[1];
 
     const IndexSet owned_dofs = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
-    owned    = {owned_dofs.get_view(0, n_v), owned_dofs.get_view(n_v, n_v + n_p)};
-    relevant = {relevant_dofs.get_view(0, n_v), relevant_dofs.get_view(n_v, n_v + n_p)};
+    owned = {owned_dofs.get_view(0, n_v), owned_dofs.get_view(n_v, n_v + n_p)};
+    relevant = {relevant_dofs.get_view(0, n_v),
+                relevant_dofs.get_view(n_v, n_v + n_p)};
 
     make_constraints(homogeneous_constraints, 0.);
     constrained_frame_velocity = std::numeric_limits<double>::quiet_NaN();
@@ -176,7 +187,9 @@ namespace rbc_ifem
       VectorTools::interpolate_boundary_values(mapping,
                                                dof_handler,
                                                boundary,
-                                               FrameVelocity(*velocity, frame_velocity, scale),
+                                               FrameVelocity(*velocity,
+                                                             frame_velocity,
+                                                             scale),
                                                constraints,
                                                velocity_mask);
     constraints.close();
@@ -185,14 +198,17 @@ namespace rbc_ifem
   void
   FluidProblem::setup_matrices()
   {
-    const unsigned int rank = Utilities::MPI::this_mpi_process(communicator);
+    const unsigned int rank   = Utilities::MPI::this_mpi_process(communicator);
     const auto         reinit = [&](TrilinosWrappers::BlockSparseMatrix &matrix,
-                            const auto &                         couples) {
+                            const auto                          &couples) {
       Table<2, DoFTools::Coupling> coupling(4, 4);
       for (unsigned int c = 0; c < 4; ++c)
         for (unsigned int d = 0; d < 4; ++d)
           coupling[c][d] = couples(c, d) ? DoFTools::always : DoFTools::none;
-      TrilinosWrappers::BlockSparsityPattern sparsity(owned, owned, relevant, communicator);
+      TrilinosWrappers::BlockSparsityPattern sparsity(owned,
+                                                      owned,
+                                                      relevant,
+                                                      communicator);
       DoFTools::make_sparsity_pattern(
         dof_handler, coupling, sparsity, homogeneous_constraints, false, rank);
       sparsity.compress();
@@ -206,7 +222,8 @@ namespace rbc_ifem
     reinit(system_matrix, [&](unsigned int c, unsigned int d) {
       return (c < 3 && d < 3) ? (c == d || navier_stokes) : (c < 3 || d < 3);
     });
-    reinit(schur_matrix, [](unsigned int c, unsigned int d) { return c == 3 && d == 3; });
+    reinit(schur_matrix,
+           [](unsigned int c, unsigned int d) { return c == 3 && d == 3; });
 
     current.reinit(owned, relevant, communicator);
     previous.reinit(owned, relevant, communicator);
@@ -216,7 +233,8 @@ namespace rbc_ifem
     unit_axial_velocity.reinit(owned, communicator);
     VectorTools::interpolate(mapping,
                              dof_handler,
-                             Functions::ConstantFunction<3>(std::vector<double>{1., 0., 0., 0.}),
+                             Functions::ConstantFunction<3>(
+                               std::vector<double>{1., 0., 0., 0.}),
                              unit_axial_velocity);
   }
 
@@ -229,12 +247,14 @@ namespace rbc_ifem
 
     const double       rho = parameters.density, mu = parameters.viscosity;
     const QGauss<3>    quadrature(fe.degree + 1);
-    FEValues<3>        fe_values(mapping, fe, quadrature,
+    FEValues<3>        fe_values(mapping,
+                          fe,
+                          quadrature,
                           update_values | update_gradients | update_JxW_values);
     const unsigned int n = fe.n_dofs_per_cell();
     FullMatrix<double> cell_matrix(n, n), cell_schur(n, n);
     std::vector<types::global_dof_index> dof_indices(n);
-    std::vector<Tensor<1, 3>> phi_v(n), v(quadrature.size());
+    std::vector<Tensor<1, 3>>            phi_v(n), v(quadrature.size());
     std::vector<Tensor<2, 3>> grad_phi_v(n), grad_v(quadrature.size());
     std::vector<double>       div_phi_v(n), phi_p(n);
     std::vector<unsigned int> component(n);
@@ -276,17 +296,23 @@ namespace rbc_ifem
                       cell_matrix(i, j) +=
                         (rho / time_step * (phi_v[j] * phi_v[i]) +
                          mu * scalar_product(grad_phi_v[j], grad_phi_v[i]) +
-                         rho * ((grad_phi_v[j] * v[q] + grad_v[q] * phi_v[j]) * phi_v[i])) *
+                         rho * ((grad_phi_v[j] * v[q] + grad_v[q] * phi_v[j]) *
+                                phi_v[i])) *
                         JxW;
                     else if (ci == cj)
-                      cell_matrix(i, j) += (rho / time_step * (phi_v[j] * phi_v[i]) +
-                                            mu * scalar_product(grad_phi_v[j], grad_phi_v[i])) *
-                                           JxW;
+                      cell_matrix(i, j) +=
+                        (rho / time_step * (phi_v[j] * phi_v[i]) +
+                         mu * scalar_product(grad_phi_v[j], grad_phi_v[i])) *
+                        JxW;
                   }
             }
           cell->get_dof_indices(dof_indices);
-          homogeneous_constraints.distribute_local_to_global(cell_matrix, dof_indices, system_matrix);
-          homogeneous_constraints.distribute_local_to_global(cell_schur, dof_indices, schur_matrix);
+          homogeneous_constraints.distribute_local_to_global(cell_matrix,
+                                                             dof_indices,
+                                                             system_matrix);
+          homogeneous_constraints.distribute_local_to_global(cell_schur,
+                                                             dof_indices,
+                                                             schur_matrix);
         }
     system_matrix.compress(VectorOperation::add);
     schur_matrix.compress(VectorOperation::add);
@@ -302,7 +328,9 @@ namespace rbc_ifem
     amg_data.smoother_sweeps       = 2;
     amg_data.aggregation_threshold = 0.02;
     std::vector<std::vector<bool>> constant_modes;
-    DoFTools::extract_constant_modes(dof_handler, fe.component_mask(velocities), constant_modes);
+    DoFTools::extract_constant_modes(dof_handler,
+                                     fe.component_mask(velocities),
+                                     constant_modes);
     amg_data.constant_modes = constant_modes;
 
     velocity_amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
@@ -319,15 +347,17 @@ namespace rbc_ifem
 
     const double       rho = parameters.density, mu = parameters.viscosity;
     const QGauss<3>    quadrature(fe.degree + 1);
-    FEValues<3>        fe_values(mapping, fe, quadrature,
+    FEValues<3>        fe_values(mapping,
+                          fe,
+                          quadrature,
                           update_values | update_gradients | update_JxW_values);
     const unsigned int n  = fe.n_dofs_per_cell();
     const unsigned int nq = quadrature.size();
     Vector<double>     cell_residual(n);
     std::vector<types::global_dof_index> dof_indices(n);
-    std::vector<Tensor<1, 3>> v(nq), v_old(nq);
-    std::vector<Tensor<2, 3>> grad_v(nq);
-    std::vector<double>       div_v(nq), p(nq);
+    std::vector<Tensor<1, 3>>            v(nq), v_old(nq);
+    std::vector<Tensor<2, 3>>            grad_v(nq);
+    std::vector<double>                  div_v(nq), p(nq);
 
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -348,13 +378,16 @@ namespace rbc_ifem
               for (unsigned int i = 0; i < n; ++i)
                 cell_residual(i) +=
                   (momentum * fe_values[velocities].value(i, q) +
-                   mu * scalar_product(grad_v[q], fe_values[velocities].gradient(i, q)) -
+                   mu * scalar_product(grad_v[q],
+                                       fe_values[velocities].gradient(i, q)) -
                    p[q] * fe_values[velocities].divergence(i, q) -
                    mu * div_v[q] * fe_values[pressure].value(i, q)) *
                   JxW;
             }
           cell->get_dof_indices(dof_indices);
-          homogeneous_constraints.distribute_local_to_global(cell_residual, dof_indices, residual);
+          homogeneous_constraints.distribute_local_to_global(cell_residual,
+                                                             dof_indices,
+                                                             residual);
         }
     residual.compress(VectorOperation::add);
     residual -= body_force;
@@ -364,7 +397,7 @@ namespace rbc_ifem
   std::pair<unsigned int, double>
   FluidProblem::solve_linear_system()
   {
-    TimerOutput::Scope scope(timer, "fluid: solve");
+    TimerOutput::Scope         scope(timer, "fluid: solve");
     const StokesPreconditioner preconditioner(system_matrix,
                                               schur_matrix.block(1, 1),
                                               *velocity_amg,
@@ -376,7 +409,8 @@ namespace rbc_ifem
     SolverControl control(parameters.max_linear_iterations,
                           parameters.linear_tolerance * residual_scale);
     SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(
-      control, SolverFGMRES<TrilinosWrappers::MPI::BlockVector>::AdditionalData(100));
+      control,
+      SolverFGMRES<TrilinosWrappers::MPI::BlockVector>::AdditionalData(100));
     update = 0.;
     residual *= -1.;
     try
@@ -389,8 +423,10 @@ namespace rbc_ifem
         message << "the fluid solver (FGMRES) did not converge: residual "
                 << e.last_residual << " after " << e.last_step
                 << " iterations, wanted " << control.tolerance()
-                << " (Fluid/Max linear iterations = " << parameters.max_linear_iterations
-                << ", Fluid/Linear solver tolerance = " << parameters.linear_tolerance << ")";
+                << " (Fluid/Max linear iterations = "
+                << parameters.max_linear_iterations
+                << ", Fluid/Linear solver tolerance = "
+                << parameters.linear_tolerance << ")";
         throw SolverFailure(message.str());
       }
     homogeneous_constraints.distribute(update);
@@ -423,7 +459,8 @@ namespace rbc_ifem
     StepReport report;
     const auto check_finite = [&](const double r) {
       if (!std::isfinite(r))
-        throw SolverFailure("the fluid residual is not finite: the flow solution has diverged");
+        throw SolverFailure(
+          "the fluid residual is not finite: the flow solution has diverged");
       report.residuals.push_back(r);
       return r;
     };
@@ -436,21 +473,24 @@ namespace rbc_ifem
       {
         // Linear: one solve with the stored operator is exact.
         const auto [iterations, linear_residual] = solve_linear_system();
-        report.linear_iterations = iterations;
-        report.final_residual    = linear_residual;
-        report.newton_iterations = 1;
+        report.linear_iterations                 = iterations;
+        report.final_residual                    = linear_residual;
+        report.newton_iterations                 = 1;
         return report;
       }
 
-    for (double r = first; r > parameters.newton_tolerance * std::max(first, residual_scale);)
+    for (double r = first;
+         r > parameters.newton_tolerance * std::max(first, residual_scale);)
       {
         if (report.newton_iterations == parameters.max_newton_iterations)
           {
             std::ostringstream message;
-            message << "Newton did not converge in Fluid/Max Newton iterations = "
-                    << parameters.max_newton_iterations << ": residuals";
+            message
+              << "Newton did not converge in Fluid/Max Newton iterations = "
+              << parameters.max_newton_iterations << ": residuals";
             for (const double residual_norm : report.residuals)
-              message << ' ' << std::scientific << std::setprecision(2) << residual_norm;
+              message << ' ' << std::scientific << std::setprecision(2)
+                      << residual_norm;
             throw SolverFailure(message.str());
           }
         assemble_jacobian(true);
@@ -458,7 +498,7 @@ namespace rbc_ifem
         const unsigned int iterations = solve_linear_system().first;
         report.linear_iterations += iterations;
         ++report.newton_iterations;
-        r = check_finite(assemble_residual(true));
+        r                     = check_finite(assemble_residual(true));
         report.final_residual = r;
       }
     return report;
@@ -484,7 +524,8 @@ namespace rbc_ifem
       return;
     if (current.size() > 0)
       {
-        TrilinosWrappers::MPI::BlockVector seen_from_new_frame(owned, communicator);
+        TrilinosWrappers::MPI::BlockVector seen_from_new_frame(owned,
+                                                               communicator);
         seen_from_new_frame = current;
         seen_from_new_frame.add(frame_velocity - velocity, unit_axial_velocity);
         current = seen_from_new_frame;
@@ -543,19 +584,28 @@ namespace rbc_ifem
   FlowMeasures
   FluidProblem::measure() const
   {
-    TimerOutput::Scope scope(timer, "fluid: measures");
-    const QGauss<3> quadrature(fe.degree + 1);
-    const QGauss<2> face_quadrature(fe.degree + 1);
-    FEValues<3>     fe_values(mapping, fe, quadrature, update_values | update_gradients | update_JxW_values);
-    FEFaceValues<3> face_values(mapping, fe, face_quadrature,
-                                update_values | update_normal_vectors | update_JxW_values);
-    std::vector<Tensor<1, 3>> v(quadrature.size()), v_face(face_quadrature.size());
-    std::vector<double>       div_v(quadrature.size()), p_face(face_quadrature.size());
+    TimerOutput::Scope        scope(timer, "fluid: measures");
+    const QGauss<3>           quadrature(fe.degree + 1);
+    const QGauss<2>           face_quadrature(fe.degree + 1);
+    FEValues<3>               fe_values(mapping,
+                          fe,
+                          quadrature,
+                          update_values | update_gradients | update_JxW_values);
+    FEFaceValues<3>           face_values(mapping,
+                                fe,
+                                face_quadrature,
+                                update_values | update_normal_vectors |
+                                  update_JxW_values);
+    std::vector<Tensor<1, 3>> v(quadrature.size()),
+      v_face(face_quadrature.size());
+    std::vector<double> div_v(quadrature.size()),
+      p_face(face_quadrature.size());
 
     FlowMeasures m;
     double       divergence_squared = 0.;
     // Integrals of p and of 1 over the inlet and the outlet.
-    double inlet_pressure = 0., inlet_area = 0., outlet_pressure = 0., outlet_area = 0.;
+    double inlet_pressure = 0., inlet_area = 0., outlet_pressure = 0.,
+           outlet_area = 0.;
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -572,21 +622,26 @@ namespace rbc_ifem
                 (cell->face(f)->boundary_id() == FluidBoundary::inlet ||
                  cell->face(f)->boundary_id() == FluidBoundary::outlet))
               {
-                const bool outlet = cell->face(f)->boundary_id() == FluidBoundary::outlet;
+                const bool outlet =
+                  cell->face(f)->boundary_id() == FluidBoundary::outlet;
                 face_values.reinit(cell, f);
                 face_values[velocities].get_function_values(current, v_face);
                 face_values[pressure].get_function_values(current, p_face);
-                for (const unsigned int q : face_values.quadrature_point_indices())
+                for (const unsigned int q :
+                     face_values.quadrature_point_indices())
                   {
                     const double JxW = face_values.JxW(q);
-                    (outlet ? outlet_pressure : inlet_pressure) += p_face[q] * JxW;
+                    (outlet ? outlet_pressure : inlet_pressure) +=
+                      p_face[q] * JxW;
                     (outlet ? outlet_area : inlet_area) += JxW;
                     if (outlet)
-                      m.flow_rate += v_face[q] * face_values.normal_vector(q) * JxW;
+                      m.flow_rate +=
+                        v_face[q] * face_values.normal_vector(q) * JxW;
                   }
               }
         }
-    m.divergence_l2 = std::sqrt(Utilities::MPI::sum(divergence_squared, communicator));
+    m.divergence_l2 =
+      std::sqrt(Utilities::MPI::sum(divergence_squared, communicator));
     m.max_velocity  = Utilities::MPI::max(m.max_velocity, communicator);
     m.flow_rate     = Utilities::MPI::sum(m.flow_rate, communicator);
     m.pressure_drop = Utilities::MPI::sum(inlet_pressure, communicator) /
@@ -597,21 +652,27 @@ namespace rbc_ifem
   }
 
   std::string
-  FluidProblem::write_vtu(const std::string &directory, const unsigned int counter) const
+  FluidProblem::write_vtu(const std::string &directory,
+                          const unsigned int counter) const
   {
     TimerOutput::Scope       scope(timer, "fluid: output");
     std::vector<std::string> names(3, "velocity");
     names.emplace_back("pressure");
-    std::vector<DataComponentInterpretation::DataComponentInterpretation> interpretation(
-      3, DataComponentInterpretation::component_is_part_of_vector);
+    std::vector<DataComponentInterpretation::DataComponentInterpretation>
+      interpretation(3,
+                     DataComponentInterpretation::component_is_part_of_vector);
     interpretation.push_back(DataComponentInterpretation::component_is_scalar);
 
     DataOut<3> data_out;
     data_out.set_flags(fast_vtk_flags());
     data_out.attach_dof_handler(dof_handler);
-    data_out.add_data_vector(current, names, DataOut<3>::type_dof_data, interpretation);
+    data_out.add_data_vector(current,
+                             names,
+                             DataOut<3>::type_dof_data,
+                             interpretation);
     data_out.build_patches(mapping, 2);
-    return data_out.write_vtu_with_pvtu_record(directory + "/", "flow", counter, communicator, 4);
+    return data_out.write_vtu_with_pvtu_record(
+      directory + "/", "flow", counter, communicator, 4);
   }
 
   const TrilinosWrappers::MPI::BlockVector &

@@ -7,9 +7,9 @@ namespace rbc_ifem
 {
   StokesPreconditioner::StokesPreconditioner(
     const TrilinosWrappers::BlockSparseMatrix &system_matrix,
-    const TrilinosWrappers::SparseMatrix &     schur_approximation,
-    const TrilinosWrappers::PreconditionAMG &  velocity_amg,
-    const TrilinosWrappers::PreconditionILU &  schur_ilu)
+    const TrilinosWrappers::SparseMatrix      &schur_approximation,
+    const TrilinosWrappers::PreconditionAMG   &velocity_amg,
+    const TrilinosWrappers::PreconditionILU   &schur_ilu)
     : system_matrix(system_matrix)
     , schur_approximation(schur_approximation)
     , velocity_amg(velocity_amg)
@@ -17,12 +17,13 @@ namespace rbc_ifem
   {}
 
   void
-  StokesPreconditioner::vmult(TrilinosWrappers::MPI::BlockVector &      dst,
-                              const TrilinosWrappers::MPI::BlockVector &src) const
+  StokesPreconditioner::vmult(
+    TrilinosWrappers::MPI::BlockVector       &dst,
+    const TrilinosWrappers::MPI::BlockVector &src) const
   {
     // Pressure: dst_p = -S̃⁻¹ src_p, to three digits; more buys nothing, as
     // S̃ is itself only an approximation of S.
-    dst.block(1) = 0.;
+    dst.block(1)               = 0.;
     const double pressure_norm = src.block(1).l2_norm();
     if (pressure_norm > 0.)
       {

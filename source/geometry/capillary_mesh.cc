@@ -26,8 +26,8 @@ namespace rbc_ifem
      * each further radius. Ring k (k >= 1) gets ring_materials[k].
      */
     void
-    create_cross_section(Triangulation<2> &                    section,
-                         const std::vector<double> &           radii,
+    create_cross_section(Triangulation<2>                      &section,
+                         const std::vector<double>             &radii,
                          const std::vector<types::material_id> &ring_materials)
     {
       // Vertex 4j + k sits at angle 45° + 90° k on circle j; circle 0 holds
@@ -52,9 +52,9 @@ namespace rbc_ifem
             const unsigned int inner = 4 * (j - 1), outer = 4 * j;
             CellData<2>        ring;
             ring.vertices    = {inner + (k + 1) % 4,
-                             inner + k,
-                             outer + (k + 1) % 4,
-                             outer + k};
+                                inner + k,
+                                outer + (k + 1) % 4,
+                                outer + k};
             ring.material_id = ring_materials[j];
             cells.push_back(ring);
           }
@@ -68,8 +68,8 @@ namespace rbc_ifem
      * interpolation for the lumen cells that blend square and circle.
      */
     void
-    create_capillary(Triangulation<3> &                     triangulation,
-                     const std::vector<double> &            radii,
+    create_capillary(Triangulation<3>                      &triangulation,
+                     const std::vector<double>             &radii,
                      const std::vector<types::material_id> &ring_materials,
                      const double                           length,
                      const types::boundary_id               lateral_id,
@@ -126,9 +126,9 @@ namespace rbc_ifem
             if (on_circle(face, lumen_radius))
               face->set_all_manifold_ids(cylindrical_manifold_id);
 
-      triangulation.set_manifold(cylindrical_manifold_id,
-                                 CylindricalManifold<3>(Tensor<1, 3>({1., 0., 0.}),
-                                                        Point<3>()));
+      triangulation.set_manifold(
+        cylindrical_manifold_id,
+        CylindricalManifold<3>(Tensor<1, 3>({1., 0., 0.}), Point<3>()));
       TransfiniteInterpolationManifold<3> transfinite;
       transfinite.initialize(triangulation);
       triangulation.set_manifold(transfinite_manifold_id, transfinite);
@@ -136,7 +136,7 @@ namespace rbc_ifem
   } // namespace
 
   void
-  create_fluid_mesh(Triangulation<3> &        triangulation,
+  create_fluid_mesh(Triangulation<3>         &triangulation,
                     const GeometryParameters &geometry,
                     const unsigned int        n_global_refinements)
   {
@@ -151,11 +151,12 @@ namespace rbc_ifem
   }
 
   void
-  create_diffusion_mesh(Triangulation<3> &        triangulation,
+  create_diffusion_mesh(Triangulation<3>         &triangulation,
                         const GeometryParameters &geometry,
                         const unsigned int        n_global_refinements)
   {
-    const double wall_radius = geometry.capillary_radius + geometry.wall_thickness;
+    const double wall_radius =
+      geometry.capillary_radius + geometry.wall_thickness;
     create_capillary(triangulation,
                      {geometry.capillary_radius,
                       wall_radius,
@@ -172,7 +173,7 @@ namespace rbc_ifem
   }
 
   void
-  refine_near_points(Triangulation<3> &           triangulation,
+  refine_near_points(Triangulation<3>            &triangulation,
                      const std::vector<Point<3>> &points,
                      const double                 band_width,
                      const unsigned int           n_steps)
@@ -188,13 +189,14 @@ namespace rbc_ifem
         const unsigned int finest = triangulation.n_levels() - 1;
         for (const auto &cell : triangulation.active_cell_iterators())
           if (step == 0 || cell->level() == static_cast<int>(finest))
-          {
-            const Point<3> centre = cell->center();
-            for (const Point<3> &nearest :
-                 tree | bgi::adaptors::queried(bgi::nearest(centre, 1)))
-              if (centre.distance(nearest) < band_width + 0.5 * cell->diameter())
-                cell->set_refine_flag();
-          }
+            {
+              const Point<3> centre = cell->center();
+              for (const Point<3> &nearest :
+                   tree | bgi::adaptors::queried(bgi::nearest(centre, 1)))
+                if (centre.distance(nearest) <
+                    band_width + 0.5 * cell->diameter())
+                  cell->set_refine_flag();
+            }
         triangulation.execute_coarsening_and_refinement();
       }
   }

@@ -1,5 +1,5 @@
-#include <rbc_ifem/geometry/cell_layout.h>
 #include <rbc_ifem/base/input_error.h>
+#include <rbc_ifem/geometry/cell_layout.h>
 
 #include <algorithm>
 #include <cmath>
@@ -20,17 +20,17 @@ namespace rbc_ifem
     }
   } // namespace
 
-  CellLayout::CellLayout(const LayoutParameters &  layout,
+  CellLayout::CellLayout(const LayoutParameters   &layout,
                          const GeometryParameters &geometry,
-                         const CellParameters &    cell_parameters)
+                         const CellParameters     &cell_parameters)
     : layout(layout)
     , geometry(geometry)
     , axis(cell_parameters.axis)
   {
     const EvansFungShape shape =
       EvansFungShape::named(cell_parameters.shape, cell_parameters.diameter);
-    const CellPlacement  reference{Point<3>(), axis};
-    const Tensor<1, 3>   e_x{{1., 0., 0.}};
+    const CellPlacement reference{Point<3>(), axis};
+    const Tensor<1, 3>  e_x{{1., 0., 0.}};
 
     // The shape is centrally symmetric, so its extent along +x and -x agree.
     // It also lies inside the ball of radius R about its centre, so a cell on
@@ -52,8 +52,9 @@ namespace rbc_ifem
             "a segment of Geometry/Capillary length = " +
               format(geometry.capillary_length) + " µm holds at most " +
               std::to_string(max_cells()) + " cells of length " +
-              format(length_of_cell) + " µm with Layout/Minimum gap = " +
-              format(layout.minimum_gap) + " µm.";
+              format(length_of_cell) +
+              " µm with Layout/Minimum gap = " + format(layout.minimum_gap) +
+              " µm.";
         throw InputError("Layout/Number of cells",
                          std::to_string(layout.n_cells),
                          what);
@@ -135,9 +136,9 @@ namespace rbc_ifem
   void
   CellLayout::place_clustered()
   {
-    const double pitch = length_of_cell + layout.minimum_gap;
-    const double group_length =
-      layout.n_cells * length_of_cell + (layout.n_cells - 1) * layout.minimum_gap;
+    const double pitch        = length_of_cell + layout.minimum_gap;
+    const double group_length = layout.n_cells * length_of_cell +
+                                (layout.n_cells - 1) * layout.minimum_gap;
     const double centre = layout.cluster_position * geometry.capillary_length;
 
     // The group keeps half a gap from each end face, like every layout.

@@ -1,21 +1,25 @@
-#include <rbc_ifem/geometry/cell_membranes.h>
 #include <rbc_ifem/base/input_error.h>
+#include <rbc_ifem/geometry/cell_membranes.h>
 
 #include <iomanip>
 
 namespace rbc_ifem
 {
   CellMembranes::CellMembranes(const std::vector<CellPlacement> &placements,
-                               const EvansFungShape &            shape,
-                               const unsigned int                surface_refinements)
+                               const EvansFungShape             &shape,
+                               const unsigned int surface_refinements)
     : surface_refinements(surface_refinements)
     , membrane_mapping(2)
   {
     for (const CellPlacement &placement : placements)
       {
         membranes.push_back(std::make_unique<Triangulation<2, 3>>());
-        create_cell_surface(*membranes.back(), shape, placement, surface_refinements);
-        membrane_measures.push_back(measure_surface(*membranes.back(), membrane_mapping));
+        create_cell_surface(*membranes.back(),
+                            shape,
+                            placement,
+                            surface_refinements);
+        membrane_measures.push_back(
+          measure_surface(*membranes.back(), membrane_mapping));
       }
   }
 
@@ -73,15 +77,16 @@ namespace rbc_ifem
     for (unsigned int i = 0; i < membrane_measures.size(); ++i)
       {
         const SurfaceMeasures &m = membrane_measures[i];
-        out << i << ',' << m.centroid[0] << ',' << m.centroid[1] << ',' << m.centroid[2]
-            << ',' << m.area << ',' << m.volume << '\n';
+        out << i << ',' << m.centroid[0] << ',' << m.centroid[1] << ','
+            << m.centroid[2] << ',' << m.area << ',' << m.volume << '\n';
       }
   }
 
   Clearance
   CellMembranes::require_clearance(const double capillary_radius) const
   {
-    const Clearance clearance = measure_clearance(surfaces(), membrane_mapping, capillary_radius);
+    const Clearance clearance =
+      measure_clearance(surfaces(), membrane_mapping, capillary_radius);
     // The layout keeps the true surfaces apart; meshes too coarse to follow
     // them can still cross, which no solver would survive.
     if (clearance.min_cell_gap <= 0. || clearance.min_wall_gap <= 0.)

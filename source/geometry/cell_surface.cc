@@ -10,17 +10,17 @@
 namespace rbc_ifem
 {
   void
-  create_cell_surface(Triangulation<2, 3> & surface,
+  create_cell_surface(Triangulation<2, 3>  &surface,
                       const EvansFungShape &shape,
-                      const CellPlacement & placement,
+                      const CellPlacement  &placement,
                       const unsigned int    n_refinements)
   {
     const EvansFungManifold manifold(shape, placement);
 
     surface.clear();
     GridGenerator::hyper_sphere(surface, Point<3>(), 1.);
-    GridTools::transform([&](const Point<3> &s) { return manifold.push_forward(s); },
-                         surface);
+    GridTools::transform(
+      [&](const Point<3> &s) { return manifold.push_forward(s); }, surface);
     surface.set_all_manifold_ids(0);
     surface.set_manifold(0, manifold);
     surface.refine_global(n_refinements);
@@ -32,16 +32,16 @@ namespace rbc_ifem
     template <typename Worker>
     void
     for_each_quadrature_point(const Triangulation<2, 3> &surface,
-                              const MappingQ<2, 3> &      mapping,
-                              const Quadrature<2> &      quadrature,
-                              const Worker &             worker)
+                              const MappingQ<2, 3>      &mapping,
+                              const Quadrature<2>       &quadrature,
+                              const Worker              &worker)
     {
       const FE_Nothing<2, 3> fe;
       FEValues<2, 3>         fe_values(mapping,
                                fe,
                                quadrature,
-                               update_quadrature_points | update_normal_vectors |
-                                 update_JxW_values);
+                               update_quadrature_points |
+                                 update_normal_vectors | update_JxW_values);
       for (const auto &cell : surface.active_cell_iterators())
         {
           fe_values.reinit(cell);
@@ -55,7 +55,7 @@ namespace rbc_ifem
 
   SurfaceMeasures
   measure_surface(const Triangulation<2, 3> &surface,
-                  const MappingQ<2, 3> &      mapping)
+                  const MappingQ<2, 3>      &mapping)
   {
     // Integrate about a point near the surface to keep round-off small.
     Point<3> c;
@@ -76,24 +76,27 @@ namespace rbc_ifem
           first_moment[d] += 0.5 * y[d] * y[d] * n[d] * JxW;
         second_moment += outer_product(y, y) * (y * n) * JxW / 5.;
       });
-    m.centroid             = c + first_moment / m.volume;
-    const Tensor<1, 3> d   = m.centroid - c;
-    m.second_moment        = second_moment - m.volume * outer_product(d, d);
+    m.centroid           = c + first_moment / m.volume;
+    const Tensor<1, 3> d = m.centroid - c;
+    m.second_moment      = second_moment - m.volume * outer_product(d, d);
     return m;
   }
 
   ShearPlaneEllipse
   shear_plane_ellipse(const Tensor<2, 3> &S)
   {
-    const double mean            = (S[0][0] + S[1][1]) / 2.;
-    const double half_difference = std::hypot((S[0][0] - S[1][1]) / 2., S[0][1]);
-    const double L = std::sqrt(mean + half_difference), B = std::sqrt(std::max(0., mean - half_difference));
-    return {(L - B) / (L + B), 0.5 * std::atan2(2. * S[0][1], S[0][0] - S[1][1])};
+    const double mean = (S[0][0] + S[1][1]) / 2.;
+    const double half_difference =
+      std::hypot((S[0][0] - S[1][1]) / 2., S[0][1]);
+    const double L = std::sqrt(mean + half_difference),
+                 B = std::sqrt(std::max(0., mean - half_difference));
+    return {(L - B) / (L + B),
+            0.5 * std::atan2(2. * S[0][1], S[0][0] - S[1][1])};
   }
 
   Clearance
   measure_clearance(const std::vector<const Triangulation<2, 3> *> &surfaces,
-                    const MappingQ<2, 3> &                            mapping,
+                    const MappingQ<2, 3>                           &mapping,
                     const double capillary_radius)
   {
     namespace bgi = boost::geometry::index;
@@ -108,7 +111,9 @@ namespace rbc_ifem
                                   QGauss<2>(3),
                                   [&](const Point<3> &x,
                                       const Tensor<1, 3> &,
-                                      const double) { clouds[i].push_back(x); });
+                                      const double) {
+                                    clouds[i].push_back(x);
+                                  });
         for (const Point<3> &x : clouds[i])
           clearance.min_wall_gap =
             std::min(clearance.min_wall_gap,
@@ -120,7 +125,8 @@ namespace rbc_ifem
         const auto tree = pack_rtree(clouds[i]);
         for (unsigned int j = i + 1; j < clouds.size(); ++j)
           for (const Point<3> &x : clouds[j])
-            for (const Point<3> &nearest : tree | bgi::adaptors::queried(bgi::nearest(x, 1)))
+            for (const Point<3> &nearest :
+                 tree | bgi::adaptors::queried(bgi::nearest(x, 1)))
               if (x.distance(nearest) < clearance.min_cell_gap)
                 {
                   clearance.min_cell_gap  = x.distance(nearest);

@@ -7,7 +7,8 @@
 
 namespace rbc_ifem
 {
-  EvansFungShape::EvansFungShape(const double diameter, const Coefficients &coefficients)
+  EvansFungShape::EvansFungShape(const double        diameter,
+                                 const Coefficients &coefficients)
     : R(diameter / 2.)
     , a(coefficients)
   {}
@@ -15,7 +16,8 @@ namespace rbc_ifem
   EvansFungShape
   EvansFungShape::named(const std::string &name, const double diameter)
   {
-    Assert(name == "biconcave" || name == "sphere", ExcMessage("unknown shape " + name));
+    Assert(name == "biconcave" || name == "sphere",
+           ExcMessage("unknown shape " + name));
     return EvansFungShape(diameter, name == "sphere" ? sphere : red_cell);
   }
 
@@ -43,7 +45,8 @@ namespace rbc_ifem
   EvansFungShape::half_thickness(const double r) const
   {
     const double rho2 = std::min(1., (r / R) * (r / R));
-    return 0.5 * R * std::sqrt(1. - rho2) * (a[0] + a[1] * rho2 + a[2] * rho2 * rho2);
+    return 0.5 * R * std::sqrt(1. - rho2) *
+           (a[0] + a[1] * rho2 + a[2] * rho2 * rho2);
   }
 
   Point<3>
@@ -86,7 +89,7 @@ namespace rbc_ifem
   template <typename Function>
   double
   EvansFungShape::maximize_over_surface(const CellPlacement &placement,
-                                        const Function &     f) const
+                                        const Function      &f) const
   {
     const Tensor<2, 3> q     = placement.rotation();
     const auto         value = [&](const double theta, const double phi) {
@@ -130,7 +133,7 @@ namespace rbc_ifem
 
   double
   EvansFungShape::extent(const CellPlacement &placement,
-                         const Tensor<1, 3> & direction) const
+                         const Tensor<1, 3>  &direction) const
   {
     const Tensor<1, 3> e = direction / direction.norm();
     return maximize_over_surface(placement, [&](const Point<3> &x) {
@@ -139,7 +142,7 @@ namespace rbc_ifem
   }
 
   EvansFungManifold::EvansFungManifold(const EvansFungShape &shape,
-                                       const CellPlacement & placement)
+                                       const CellPlacement  &placement)
     : shape(shape)
     , placement(placement)
     , rotation(placement.rotation())
@@ -161,7 +164,8 @@ namespace rbc_ifem
   Point<3>
   EvansFungManifold::pull_back(const Point<3> &x) const
   {
-    return shape.to_sphere(Point<3>(transpose(rotation) * (x - placement.center)));
+    return shape.to_sphere(
+      Point<3>(transpose(rotation) * (x - placement.center)));
   }
 
   Point<3>
@@ -176,7 +180,7 @@ namespace rbc_ifem
   Point<3>
   EvansFungManifold::get_new_point(
     const ArrayView<const Point<3>> &surrounding_points,
-    const ArrayView<const double> &  weights) const
+    const ArrayView<const double>   &weights) const
   {
     std::vector<Point<3>> on_sphere(surrounding_points.size());
     for (unsigned int i = 0; i < on_sphere.size(); ++i)
@@ -221,16 +225,19 @@ namespace rbc_ifem
   EvansFungShape::exact_area() const
   {
     const double R = radius();
-    return integrate_profile(*this, [R](const double t, const double r2, const double zp) {
-      return 2. * numbers::PI * std::sqrt(R * R * R * R * t * t + r2 * zp * zp);
-    });
+    return integrate_profile(
+      *this, [R](const double t, const double r2, const double zp) {
+        return 2. * numbers::PI *
+               std::sqrt(R * R * R * R * t * t + r2 * zp * zp);
+      });
   }
 
   double
   EvansFungShape::exact_volume() const
   {
-    return integrate_profile(*this, [](const double, const double r2, const double zp) {
-      return numbers::PI * r2 * zp;
-    });
+    return integrate_profile(
+      *this, [](const double, const double r2, const double zp) {
+        return numbers::PI * r2 * zp;
+      });
   }
 } // namespace rbc_ifem

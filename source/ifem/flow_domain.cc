@@ -9,16 +9,18 @@
 namespace rbc_ifem
 {
   void
-  create_shear_box_mesh(Triangulation<3> &  triangulation,
+  create_shear_box_mesh(Triangulation<3>   &triangulation,
                         const Tensor<1, 3> &box,
                         const double        cell_size,
                         const unsigned int  n_global_refinements)
   {
     std::vector<unsigned int> repetitions(3);
     for (unsigned int d = 0; d < 3; ++d)
-      repetitions[d] = static_cast<unsigned int>(std::lround(box[d] / cell_size));
+      repetitions[d] =
+        static_cast<unsigned int>(std::lround(box[d] / cell_size));
     const Point<3> corner(box / 2.);
-    GridGenerator::subdivided_hyper_rectangle(triangulation, repetitions, -corner, corner, true);
+    GridGenerator::subdivided_hyper_rectangle(
+      triangulation, repetitions, -corner, corner, true);
     // colorize numbers the faces 2d (low) and 2d + 1 (high) along axis d.
     for (const auto &face : triangulation.active_face_iterators())
       if (face->at_boundary())
@@ -35,9 +37,11 @@ namespace rbc_ifem
   FlowDomain::capillary(const Parameters &parameters)
   {
     FlowDomain domain;
-    domain.kind       = Kind::capillary;
-    domain.drive      = FlowDrive::capillary(parameters.fluid, parameters.geometry);
-    domain.placements = CellLayout(parameters.layout, parameters.geometry, parameters.cells).placements();
+    domain.kind  = Kind::capillary;
+    domain.drive = FlowDrive::capillary(parameters.fluid, parameters.geometry);
+    domain.placements =
+      CellLayout(parameters.layout, parameters.geometry, parameters.cells)
+        .placements();
     return domain;
   }
 
@@ -53,10 +57,13 @@ namespace rbc_ifem
   }
 
   void
-  FlowDomain::create_mesh(Triangulation<3> &triangulation, const Parameters &parameters) const
+  FlowDomain::create_mesh(Triangulation<3> &triangulation,
+                          const Parameters &parameters) const
   {
     if (kind == Kind::capillary)
-      create_fluid_mesh(triangulation, parameters.geometry, parameters.mesh.fluid_global_refinements);
+      create_fluid_mesh(triangulation,
+                        parameters.geometry,
+                        parameters.mesh.fluid_global_refinements);
     else
       create_shear_box_mesh(triangulation,
                             parameters.shear.box,
@@ -67,8 +74,9 @@ namespace rbc_ifem
   double
   FlowDomain::velocity_scale(const Parameters &parameters) const
   {
-    return kind == Kind::capillary ? std::abs(parameters.fluid.inlet_mean_speed) :
-                                     shear_rate * parameters.cells.diameter / 2.;
+    return kind == Kind::capillary ?
+             std::abs(parameters.fluid.inlet_mean_speed) :
+             shear_rate * parameters.cells.diameter / 2.;
   }
 
   double

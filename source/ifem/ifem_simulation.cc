@@ -1,10 +1,10 @@
-#include <rbc_ifem/geometry/capillary_mesh.h>
-#include <rbc_ifem/diffusion/co_diffusion.h>
-#include <rbc_ifem/experiments/diffusion_experiment.h>
-#include <rbc_ifem/ifem/ifem_simulation.h>
 #include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/output.h>
 #include <rbc_ifem/base/solver_failure.h>
+#include <rbc_ifem/diffusion/co_diffusion.h>
+#include <rbc_ifem/experiments/diffusion_experiment.h>
+#include <rbc_ifem/geometry/capillary_mesh.h>
+#include <rbc_ifem/ifem/ifem_simulation.h>
 
 #include <boost/archive/binary_iarchive.hpp>
 #include <boost/archive/binary_oarchive.hpp>
@@ -52,15 +52,16 @@ namespace rbc_ifem
     };
   } // namespace
 
-  CouplingTimeStepLimit::CouplingTimeStepLimit(const double              viscosity,
+  CouplingTimeStepLimit::CouplingTimeStepLimit(const double viscosity,
                                                const MembraneParameters &m,
-                                               const double              point_spacing,
-                                               const double              mesh_size)
+                                               const double point_spacing,
+                                               const double mesh_size)
   {
     const double q = numbers::PI / std::max(point_spacing, 0.5 * mesh_size);
-    in_plane       = 8. * viscosity / ((m.area_dilation_modulus + m.shear_modulus) * q);
-    bending        = 8. * viscosity / (m.bending_modulus * q * q * q);
-    limit          = std::min(in_plane, bending);
+    in_plane =
+      8. * viscosity / ((m.area_dilation_modulus + m.shear_modulus) * q);
+    bending = 8. * viscosity / (m.bending_modulus * q * q * q);
+    limit   = std::min(in_plane, bending);
   }
 
 
@@ -78,7 +79,11 @@ namespace rbc_ifem
                     Triangulation<3>::none,
                     false,
                     parallel::shared::Triangulation<3>::partition_metis)
-    , fluid(triangulation, parameters.fluid, domain.drive, parameters.time.time_step, timer)
+    , fluid(triangulation,
+            parameters.fluid,
+            domain.drive,
+            parameters.time.time_step,
+            timer)
     , cells(domain.placements, parameters.cells, parameters.membrane)
   {
     record.cell_files.resize(cells.size());
@@ -106,7 +111,8 @@ namespace rbc_ifem
       }
     catch (const std::runtime_error &e)
       {
-        throw InputError("the cells do not fit into " + domain.name() + ": " + e.what());
+        throw InputError("the cells do not fit into " + domain.name() + ": " +
+                         e.what());
       }
     mesh_size = coupling->mesh_size_at_points();
     load.reinit(fluid.owned_partitioning(), communicator);
@@ -115,24 +121,25 @@ namespace rbc_ifem
   void
   IFEMSimulation::report_startup() const
   {
-    const FluidParameters &   f = parameters.fluid;
-    const MembraneParameters &m = parameters.membrane;
+    const FluidParameters    &f      = parameters.fluid;
+    const MembraneParameters &m      = parameters.membrane;
     const double              speed  = domain.velocity_scale(parameters);
     const double              length = domain.length_scale(parameters);
-    const bool                box    = domain.kind == FlowDomain::Kind::shear_box;
+    const bool                box = domain.kind == FlowDomain::Kind::shear_box;
     const double              spacing = cells.point_spacing();
     const CouplingTimeStepLimit stable(f.viscosity, m, spacing, mesh_size);
     const double                stable_step = stable.limit;
 
     pcout << "  cells: " << cells.size() << ", " << cells.n_points()
-          << " membrane points, spacing up to " << spacing << " µm; fluid mesh size at the cells h = "
-          << mesh_size << " µm\n"
+          << " membrane points, spacing up to " << spacing
+          << " µm; fluid mesh size at the cells h = " << mesh_size << " µm\n"
           << "  Reynolds number " << (box ? "ρ γ̇ a² / μ = " : "ρ ū 2R / μ = ")
           << f.density * speed * length / f.viscosity << "\n"
           << "  capillary number " << (box ? "μ a γ̇ / G = " : "μ ū / G = ")
           << f.viscosity * speed / m.shear_modulus << "\n"
-          << "  explicit-coupling time step limit ≈ " << stable_step << " s (in-plane "
-          << stable.in_plane << " s, bending " << stable.bending
+          << "  explicit-coupling time step limit ≈ " << stable_step
+          << " s (in-plane " << stable.in_plane << " s, bending "
+          << stable.bending
           << " s); runs stay stable below about 0.7 of it (doc/ifem.md); Δt = "
           << parameters.time.time_step << " s" << std::endl;
     if (parameters.time.time_step > stable_step)
@@ -140,11 +147,13 @@ namespace rbc_ifem
             << " s exceeds the explicit-coupling estimate " << stable_step
             << " s; the run may become unstable." << std::endl;
     if (spacing > 0.5 * mesh_size)
-      pcout << "  WARNING: the membrane point spacing " << spacing
-            << " µm exceeds half the fluid mesh size at the cells, h/2 = " << 0.5 * mesh_size
-            << " µm (the paper's rule): raise Cells/Surface refinements or lower "
-               "Mesh/Fluid band refinements."
-            << std::endl;
+      pcout
+        << "  WARNING: the membrane point spacing " << spacing
+        << " µm exceeds half the fluid mesh size at the cells, h/2 = "
+        << 0.5 * mesh_size
+        << " µm (the paper's rule): raise Cells/Surface refinements or lower "
+           "Mesh/Fluid band refinements."
+        << std::endl;
   }
 
   StepReport
@@ -189,13 +198,18 @@ namespace rbc_ifem
         largest_move = std::max(largest_move, v.norm() * dt);
         mean_axial_velocity += v[0] / velocities.size();
       }
-    if (!(largest_move <= parameters.immersed.max_step_displacement * mesh_size))
+    if (!(largest_move <=
+          parameters.immersed.max_step_displacement * mesh_size))
       {
         std::ostringstream why;
-        why << "a membrane point moved " << largest_move << " µm in one step, more than "
-            << "Immersed cells/Maximum step displacement = "
-            << parameters.immersed.max_step_displacement << " of the fluid mesh size " << mesh_size
-            << " µm: the explicit coupling is unstable; reduce Time/Time step = " << dt << " s";
+        why
+          << "a membrane point moved " << largest_move
+          << " µm in one step, more than "
+          << "Immersed cells/Maximum step displacement = "
+          << parameters.immersed.max_step_displacement
+          << " of the fluid mesh size " << mesh_size
+          << " µm: the explicit coupling is unstable; reduce Time/Time step = "
+          << dt << " s";
         stop(why.str(), last_good);
       }
 
@@ -216,7 +230,8 @@ namespace rbc_ifem
     record.time += dt;
     ++record.step;
     if (parameters.immersed.follow_cells)
-      fluid.set_frame_velocity(fluid.get_frame_velocity() + mean_axial_velocity);
+      fluid.set_frame_velocity(fluid.get_frame_velocity() +
+                               mean_axial_velocity);
     return report;
   }
 
@@ -236,11 +251,15 @@ namespace rbc_ifem
       communicator,
       timer,
       [&](const CODiffusion &diffusion) {
-        const CODiffusion::OutputFiles files = diffusion.write_output(directory, "diffusion", counter);
+        const CODiffusion::OutputFiles files =
+          diffusion.write_output(directory, "diffusion", counter);
         record.diffusion_files.emplace_back(record.time, files.pressure);
         record.flux_files.emplace_back(record.time, files.membranes);
         write_pvd(directory, "diffusion", record.diffusion_files, communicator);
-        write_pvd(directory, "diffusion_membranes", record.flux_files, communicator);
+        write_pvd(directory,
+                  "diffusion_membranes",
+                  record.flux_files,
+                  communicator);
       });
     std::ostringstream row;
     row << csv_row(record.time, uptake.dm_total);
@@ -275,21 +294,22 @@ namespace rbc_ifem
     for (unsigned int c = 0; c < shapes.size(); ++c)
       {
         const CellShape &s = shapes[c];
-        record.cell_rows.push_back(csv_row(record.time,
-                                           c,
-                                           s.centroid[0] + record.frame_offset,
-                                           s.centroid[1],
-                                           s.centroid[2],
-                                           s.area,
-                                           s.volume,
-                                           s.axial_length,
-                                           s.max_radius,
-                                           s.deformation_index,
-                                           s.centroid[0],
-                                           s.volume / cells.reference_volume(c) - 1.,
-                                           s.area / cells.reference_area(c) - 1.,
-                                           s.taylor_deformation,
-                                           s.inclination));
+        record.cell_rows.push_back(
+          csv_row(record.time,
+                  c,
+                  s.centroid[0] + record.frame_offset,
+                  s.centroid[1],
+                  s.centroid[2],
+                  s.area,
+                  s.volume,
+                  s.axial_length,
+                  s.max_radius,
+                  s.deformation_index,
+                  s.centroid[0],
+                  s.volume / cells.reference_volume(c) - 1.,
+                  s.area / cells.reference_area(c) - 1.,
+                  s.taylor_deformation,
+                  s.inclination));
       }
     if (domain.kind == FlowDomain::Kind::shear_box)
       record.shear_history.push_back(
@@ -302,15 +322,20 @@ namespace rbc_ifem
   {
     TimerOutput::Scope scope(timer, "output");
     const std::string &directory = parameters.output_directory;
-    record.fluid_files.emplace_back(record.time, fluid.write_vtu(directory, record.step));
+    record.fluid_files.emplace_back(record.time,
+                                    fluid.write_vtu(directory, record.step));
     write_pvd(directory, "flow", record.fluid_files, communicator);
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
       {
-        const std::vector<std::string> files = cells.write_vtu(directory, "cell", record.step);
+        const std::vector<std::string> files =
+          cells.write_vtu(directory, "cell", record.step);
         for (unsigned int c = 0; c < cells.size(); ++c)
           {
             record.cell_files[c].emplace_back(record.time, files[c]);
-            write_pvd(directory, "cell_" + std::to_string(c), record.cell_files[c], communicator);
+            write_pvd(directory,
+                      "cell_" + std::to_string(c),
+                      record.cell_files[c],
+                      communicator);
           }
       }
   }
@@ -321,8 +346,8 @@ namespace rbc_ifem
     if (Utilities::MPI::this_mpi_process(communicator) != 0)
       return;
     const std::string &directory = parameters.output_directory;
-    const auto         write     = [&](const std::string &name,
-                           const std::string &header,
+    const auto         write     = [&](const std::string              &name,
+                           const std::string              &header,
                            const std::vector<std::string> &rows) {
       write_file_atomically(directory + "/" + name, [&](std::ostream &out) {
         out << header << '\n';
@@ -330,18 +355,21 @@ namespace rbc_ifem
           out << row << '\n';
       });
     };
-    write("flow.csv",
-          "time,flow_rate,pressure_drop,max_velocity,divergence_l2,frame_velocity,"
-          "newton_iterations,linear_iterations,held_force_x,held_force_y,held_force_z",
-          record.flow_rows);
-    write("cells.csv",
-          "time,cell,x,y,z,area,volume,axial_length,max_radius,deformation_index,frame_x,"
-          "volume_change,area_change,taylor_deformation,inclination",
-          record.cell_rows);
+    write(
+      "flow.csv",
+      "time,flow_rate,pressure_drop,max_velocity,divergence_l2,frame_velocity,"
+      "newton_iterations,linear_iterations,held_force_x,held_force_y,held_force_z",
+      record.flow_rows);
+    write(
+      "cells.csv",
+      "time,cell,x,y,z,area,volume,axial_length,max_radius,deformation_index,frame_x,"
+      "volume_change,area_change,taylor_deformation,inclination",
+      record.cell_rows);
     if (domain.kind == FlowDomain::Kind::shear_box)
       {
         std::vector<std::string> rows;
-        for (const auto &[time, deformation, inclination] : record.shear_history)
+        for (const auto &[time, deformation, inclination] :
+             record.shear_history)
           rows.push_back(csv_row(time, deformation, inclination / numbers::PI));
         write("shear.csv", "time,taylor_deformation,inclination_over_pi", rows);
       }
@@ -364,10 +392,11 @@ namespace rbc_ifem
     checkpoint.fluid     = fluid.state();
     checkpoint.positions = cells.positions();
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
-      write_file_atomically(parameters.output_directory + "/checkpoint.bin", [&](std::ostream &out) {
-        boost::archive::binary_oarchive archive(out);
-        archive << checkpoint;
-      });
+      write_file_atomically(parameters.output_directory + "/checkpoint.bin",
+                            [&](std::ostream &out) {
+                              boost::archive::binary_oarchive archive(out);
+                              archive << checkpoint;
+                            });
   }
 
   void
@@ -376,10 +405,11 @@ namespace rbc_ifem
     const std::string path = parameters.output_directory + "/checkpoint.bin";
     std::ifstream     in(path, std::ios::binary);
     if (!in)
-      throw InputError("Immersed cells/Resume",
-                       "true",
-                       "it needs the checkpoint " + path +
-                         " of an earlier run, which does not exist or cannot be read.");
+      throw InputError(
+        "Immersed cells/Resume",
+        "true",
+        "it needs the checkpoint " + path +
+          " of an earlier run, which does not exist or cannot be read.");
     Checkpoint checkpoint;
     try
       {
@@ -388,21 +418,24 @@ namespace rbc_ifem
       }
     catch (const std::exception &e)
       {
-        throw InputError("Immersed cells/Resume", "true", path + " is not a readable checkpoint.");
+        throw InputError("Immersed cells/Resume",
+                         "true",
+                         path + " is not a readable checkpoint.");
       }
     const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
     if (checkpoint.n_ranks != n_ranks ||
         checkpoint.fluid.solution.size() != fluid.get_dof_handler().n_dofs() ||
         checkpoint.positions.size() != cells.size() ||
         checkpoint.positions[0].size() != cells.positions()[0].size())
-      throw InputError("Immersed cells/Resume",
-                       "true",
-                       "the checkpoint " + path + " comes from a run on " +
-                         std::to_string(checkpoint.n_ranks) + " rank(s) with " +
-                         std::to_string(checkpoint.fluid.solution.size()) +
-                         " fluid DoFs; this run has " + std::to_string(n_ranks) + " rank(s) and " +
-                         std::to_string(fluid.get_dof_handler().n_dofs()) +
-                         ": resume with the same parameter file and number of ranks.");
+      throw InputError(
+        "Immersed cells/Resume",
+        "true",
+        "the checkpoint " + path + " comes from a run on " +
+          std::to_string(checkpoint.n_ranks) + " rank(s) with " +
+          std::to_string(checkpoint.fluid.solution.size()) +
+          " fluid DoFs; this run has " + std::to_string(n_ranks) +
+          " rank(s) and " + std::to_string(fluid.get_dof_handler().n_dofs()) +
+          ": resume with the same parameter file and number of ranks.");
     if (checkpoint.record.step >= parameters.time.n_steps)
       throw InputError("Time/Number of steps",
                        std::to_string(parameters.time.n_steps),
@@ -415,17 +448,21 @@ namespace rbc_ifem
   }
 
   void
-  IFEMSimulation::stop(const std::string &why, const std::vector<Vector<double>> &last_good)
+  IFEMSimulation::stop(const std::string                 &why,
+                       const std::vector<Vector<double>> &last_good)
   {
     cells.set_positions(last_good);
     write_tables();
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
-      cells.write_vtu(parameters.output_directory, "last_good_cell", record.step);
-    throw SolverFailure("step " + std::to_string(record.step + 1) + ", t = " +
-                        std::to_string(record.time) + " s: " + why +
-                        ". The tables so far and the last good membranes (last_good_cell_*.vtu) "
-                        "are in " +
-                        parameters.output_directory + ".");
+      cells.write_vtu(parameters.output_directory,
+                      "last_good_cell",
+                      record.step);
+    throw SolverFailure(
+      "step " + std::to_string(record.step + 1) +
+      ", t = " + std::to_string(record.time) + " s: " + why +
+      ". The tables so far and the last good membranes (last_good_cell_*.vtu) "
+      "are in " +
+      parameters.output_directory + ".");
   }
 
   const RunRecord &
@@ -438,10 +475,14 @@ namespace rbc_ifem
   IFEMSimulation::run(const ParameterHandler &prm)
   {
     const ImmersedParameters &immersed = parameters.immersed;
-    const TimeParameters &    time     = parameters.time;
-    const bool box = domain.kind == FlowDomain::Kind::shear_box;
-    pcout << "rbc-ifem: " << (box ? "a capsule in the shear box" : "experiment 'flow' with immersed cells")
-          << " (" << parameters.fluid.model << ") on " << Utilities::MPI::n_mpi_processes(communicator) << " rank(s)" << std::endl;
+    const TimeParameters     &time     = parameters.time;
+    const bool                box = domain.kind == FlowDomain::Kind::shear_box;
+    pcout << "rbc-ifem: "
+          << (box ? "a capsule in the shear box" :
+                    "experiment 'flow' with immersed cells")
+          << " (" << parameters.fluid.model << ") on "
+          << Utilities::MPI::n_mpi_processes(communicator) << " rank(s)"
+          << std::endl;
     setup();
     pcout << "  fluid mesh: " << triangulation.n_active_cells() << " cells, "
           << fluid.get_dof_handler().n_dofs() << " DoFs" << std::endl;
@@ -449,16 +490,17 @@ namespace rbc_ifem
     if (immersed.resume)
       {
         read_checkpoint();
-        pcout << "  resumed from the checkpoint at step " << record.step << ", t = " << record.time
-              << " s" << std::endl;
+        pcout << "  resumed from the checkpoint at step " << record.step
+              << ", t = " << record.time << " s" << std::endl;
       }
 
     const std::string &directory = parameters.output_directory;
     create_output_directory(directory, communicator);
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
-      write_file_atomically(directory + "/parameters.prm", [&](std::ostream &out) {
-        prm.print_parameters(out, ParameterHandler::PRM);
-      });
+      write_file_atomically(directory + "/parameters.prm",
+                            [&](std::ostream &out) {
+                              prm.print_parameters(out, ParameterHandler::PRM);
+                            });
 
     const auto due = [](const unsigned int step, const unsigned int interval) {
       return interval > 0 && step % interval == 0;
@@ -467,12 +509,13 @@ namespace rbc_ifem
       {
         record_shapes();
         if (immersed.diffusion_interval > 0)
-          pcout << "  t = 0 s: DM " << solve_uptake(0) << " µm³/(s Torr)" << std::endl;
+          pcout << "  t = 0 s: DM " << solve_uptake(0) << " µm³/(s Torr)"
+                << std::endl;
         write_fields();
         write_tables();
       }
 
-    Timer clock;
+    Timer              clock;
     const unsigned int first_step = record.step;
     while (record.step < time.n_steps)
       {
@@ -487,14 +530,17 @@ namespace rbc_ifem
 
         record_flow(report);
         std::ostringstream progress;
-        progress << "  step " << step << ", t = " << record.time << " s: "
-                 << report.linear_iterations << " FGMRES iterations, frame velocity "
+        progress << "  step " << step << ", t = " << record.time
+                 << " s: " << report.linear_iterations
+                 << " FGMRES iterations, frame velocity "
                  << fluid.get_frame_velocity() << " µm/s";
         if (diffusion)
-          progress << ", DM " << solve_uptake(step / immersed.diffusion_interval)
+          progress << ", DM "
+                   << solve_uptake(step / immersed.diffusion_interval)
                    << " µm³/(s Torr)";
         const CellShape shape = (output ? record_shapes() : cells.shapes())[0];
-        progress << "; cell 0: volume change " << shape.volume / cells.reference_volume(0) - 1.
+        progress << "; cell 0: volume change "
+                 << shape.volume / cells.reference_volume(0) - 1.
                  << ", deformation index " << shape.deformation_index;
         if (box)
           progress << ", Taylor deformation " << shape.taylor_deformation;
@@ -504,21 +550,26 @@ namespace rbc_ifem
             write_tables();
           }
         pcout << progress.str() << std::endl;
-        if (due(step, immersed.checkpoint_interval) || (last && immersed.checkpoint_interval > 0))
+        if (due(step, immersed.checkpoint_interval) ||
+            (last && immersed.checkpoint_interval > 0))
           write_checkpoint();
       }
     write_tables();
     write_timing(timer, directory, communicator);
     const unsigned int n_run = record.step - first_step;
     pcout << "  " << n_run << " steps in " << clock.wall_time() << " s, "
-          << clock.wall_time() / std::max(1u, n_run) << " s per step" << std::endl;
+          << clock.wall_time() / std::max(1u, n_run) << " s per step"
+          << std::endl;
     timer.print_summary();
-    pcout << "  wrote " << directory << "/: parameters.prm, flow.csv, cells.csv, "
+    pcout << "  wrote " << directory
+          << "/: parameters.prm, flow.csv, cells.csv, "
           << (box ? "shear.csv, " : "")
-          << (immersed.diffusion_interval > 0 ? "dm.csv, diffusion.pvd, diffusion_membranes.pvd, " : "")
+          << (immersed.diffusion_interval > 0 ?
+                "dm.csv, diffusion.pvd, diffusion_membranes.pvd, " :
+                "")
           << (immersed.checkpoint_interval > 0 ? "checkpoint.bin, " : "")
           << "flow.pvd, cell_*.pvd, timing.csv" << std::endl;
-    pcout << "  peak memory: " << peak_memory_mb(communicator) << " MB (largest over ranks)"
-          << std::endl;
+    pcout << "  peak memory: " << peak_memory_mb(communicator)
+          << " MB (largest over ranks)" << std::endl;
   }
 } // namespace rbc_ifem

@@ -1,5 +1,5 @@
-#include <rbc_ifem/membrane/membrane.h>
 #include <rbc_ifem/base/output.h>
+#include <rbc_ifem/membrane/membrane.h>
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/differentiation/ad/sacado_product_types.h>
@@ -51,12 +51,12 @@ namespace rbc_ifem
   template <typename Number>
   struct Membrane::CellTerms
   {
-    Number                           in_plane = 0.;
-    Number                           area     = 0.;
-    Number                           volume   = 0.;
+    Number                            in_plane = 0.;
+    Number                            area     = 0.;
+    Number                            volume   = 0.;
     std::vector<Tensor<1, 3, Number>> laplacian; ///< y_a = ∫ ∇_Γ N_a · ∇_Γ x dA
-    std::vector<Number>              mass;      ///< m_a = ∫ N_a dA
-    std::vector<Tensor<1, 3, Number>> normal;    ///< ∫ N_a n dA
+    std::vector<Number>               mass;   ///< m_a = ∫ N_a dA
+    std::vector<Tensor<1, 3, Number>> normal; ///< ∫ N_a n dA
   };
 
   /// The cell terms summed over the membrane.
@@ -76,14 +76,16 @@ namespace rbc_ifem
      */
     template <typename Number>
     Number
-    strain_energy_density(const MembraneParameters &p, const Number &I1, const Number &J)
+    strain_energy_density(const MembraneParameters &p,
+                          const Number             &I1,
+                          const Number             &J)
     {
       const double G = p.shear_modulus, K = p.area_dilation_modulus;
       if (p.law == "Skalak")
         {
-          const double C      = (K / G - 1.) / 2.;
-          const Number I1s    = I1 - 2.;
-          const Number I2s    = J * J - 1.;
+          const double C   = (K / G - 1.) / 2.;
+          const Number I1s = I1 - 2.;
+          const Number I2s = J * J - 1.;
           return G / 4. * (I1s * I1s + 2. * I1s - 2. * I2s + C * I2s * I2s);
         }
       // neo-Hookean: the incompressible thin-shell form, λ3 = 1/(λ1 λ2),
@@ -95,7 +97,7 @@ namespace rbc_ifem
   } // namespace
 
   Membrane::Membrane(const Triangulation<2, 3> &reference_mesh,
-                     const MembraneParameters & parameters)
+                     const MembraneParameters  &parameters)
     : parameters(parameters)
     , scalar_fe(parameters.degree)
     , fe(scalar_fe, 3)
@@ -104,7 +106,8 @@ namespace rbc_ifem
   {
     dof_handler.distribute_dofs(fe);
 
-    const unsigned int n_q = quadrature.size(), n_a = scalar_fe.n_dofs_per_cell();
+    const unsigned int n_q = quadrature.size(),
+                       n_a = scalar_fe.n_dofs_per_cell();
     shape_values.reinit(n_a, n_q);
     shape_gradients.reinit(n_a, n_q);
     for (unsigned int a = 0; a < n_a; ++a)
@@ -130,9 +133,10 @@ namespace rbc_ifem
             if (node_of_dof[first] < 0)
               {
                 node_of_dof[first] = n_nodes++;
-                node_dofs.push_back({{first,
-                                      dofs[fe.component_to_system_index(1, a)],
-                                      dofs[fe.component_to_system_index(2, a)]}});
+                node_dofs.push_back(
+                  {{first,
+                    dofs[fe.component_to_system_index(1, a)],
+                    dofs[fe.component_to_system_index(2, a)]}});
               }
             nodes[a] = node_of_dof[first];
           }
@@ -141,8 +145,8 @@ namespace rbc_ifem
       }
 
     // X: the support points of the field, on the curved reference surface.
-    const MappingQ<2, 3>                                  mapping(std::max(2u, parameters.degree));
-    std::map<types::global_dof_index, Point<3>>           support_points;
+    const MappingQ<2, 3> mapping(std::max(2u, parameters.degree));
+    std::map<types::global_dof_index, Point<3>> support_points;
     DoFTools::map_dofs_to_support_points(mapping, dof_handler, support_points);
     reference.reinit(dof_handler.n_dofs());
     for (const auto &[dof, point] : support_points)
@@ -199,7 +203,8 @@ namespace rbc_ifem
   }
 
   std::vector<double>
-  Membrane::local_positions(const unsigned int cell, const Vector<double> &x) const
+  Membrane::local_positions(const unsigned int    cell,
+                            const Vector<double> &x) const
   {
     std::vector<double> local(cell_dofs[cell].size());
     for (unsigned int k = 0; k < local.size(); ++k)
@@ -209,7 +214,8 @@ namespace rbc_ifem
 
   template <typename Number>
   Membrane::CellTerms<Number>
-  Membrane::cell_terms(const unsigned int cell, const std::vector<Number> &x) const
+  Membrane::cell_terms(const unsigned int         cell,
+                       const std::vector<Number> &x) const
   {
     using std::sqrt;
     const unsigned int n_a = scalar_fe.n_dofs_per_cell();
@@ -232,7 +238,7 @@ namespace rbc_ifem
         for (unsigned int alpha = 0; alpha < 2; ++alpha)
           for (unsigned int beta = 0; beta < 2; ++beta)
             g[alpha][beta] = tangent[alpha] * tangent[beta];
-        const Number               det_g = determinant(g);
+        const Number               det_g     = determinant(g);
         const Tensor<2, 2, Number> g_inverse = invert(g);
         const Number               jacobian  = sqrt(det_g);
         const double               w         = quadrature.weight(q);
@@ -244,11 +250,12 @@ namespace rbc_ifem
           for (unsigned int beta = 0; beta < 2; ++beta)
             I1 += G_inverse[alpha][beta] * g[alpha][beta];
         const Number J = jacobian / reference_jacobian[cell][q];
-        terms.in_plane +=
-          strain_energy_density(parameters, I1, J) * reference_jacobian[cell][q] * w;
+        terms.in_plane += strain_energy_density(parameters, I1, J) *
+                          reference_jacobian[cell][q] * w;
 
-        const Number               dA       = jacobian * w;
-        const Tensor<1, 3, Number> normal_dA = cross_product_3d(tangent[0], tangent[1]) * w;
+        const Number               dA = jacobian * w;
+        const Tensor<1, 3, Number> normal_dA =
+          cross_product_3d(tangent[0], tangent[1]) * w;
         terms.area += dA;
         terms.volume += position * normal_dA / 3.;
         for (unsigned int a = 0; a < n_a; ++a)
@@ -259,7 +266,8 @@ namespace rbc_ifem
             for (unsigned int alpha = 0; alpha < 2; ++alpha)
               for (unsigned int beta = 0; beta < 2; ++beta)
                 {
-                  const Number weight = g_inverse[alpha][beta] * shape_gradients(a, q)[alpha] * dA;
+                  const Number weight =
+                    g_inverse[alpha][beta] * shape_gradients(a, q)[alpha] * dA;
                   terms.laplacian[a] += weight * tangent[beta];
                 }
           }
@@ -299,10 +307,12 @@ namespace rbc_ifem
   }
 
   MembraneEnergy
-  Membrane::energy_and_forces(const Vector<double> &x, Vector<double> &forces) const
+  Membrane::energy_and_forces(const Vector<double> &x,
+                              Vector<double>       &forces) const
   {
-    const Sums     sums = sum_cell_terms(x);
-    const double   kappa = parameters.bending_modulus, c0 = parameters.spontaneous_curvature;
+    const Sums   sums  = sum_cell_terms(x);
+    const double kappa = parameters.bending_modulus,
+                 c0    = parameters.spontaneous_curvature;
     MembraneEnergy energy;
     energy.in_plane = sums.in_plane;
     // The penalties, and their derivatives by the sums A and V. A switched
@@ -310,13 +320,16 @@ namespace rbc_ifem
     double d_area = 0., d_volume = 0.;
     if (parameters.area_penalty > 0.)
       {
-        energy.area = parameters.area_penalty / 2. * std::pow(sums.area - area0, 2) / area0;
-        d_area      = parameters.area_penalty * (sums.area - area0) / area0;
+        energy.area =
+          parameters.area_penalty / 2. * std::pow(sums.area - area0, 2) / area0;
+        d_area = parameters.area_penalty * (sums.area - area0) / area0;
       }
     if (parameters.volume_penalty > 0.)
       {
-        energy.volume = parameters.volume_penalty / 2. * std::pow(sums.volume - volume0, 2) / volume0;
-        d_volume      = parameters.volume_penalty * (sums.volume - volume0) / volume0;
+        energy.volume = parameters.volume_penalty / 2. *
+                        std::pow(sums.volume - volume0, 2) / volume0;
+        d_volume =
+          parameters.volume_penalty * (sums.volume - volume0) / volume0;
       }
 
     // The bending energy κ/2 Σ m_i |u_i|², u_i = y_i/m_i - c0 ν_i, and its
@@ -325,14 +338,14 @@ namespace rbc_ifem
     std::vector<double>       d_mass(n_nodes);
     for (unsigned int i = 0; i < n_nodes; ++i)
       {
-        const double       m     = sums.mass[i];
-        const double       w     = sums.normal[i].norm();
-        const Tensor<1, 3> nu    = sums.normal[i] / w;
-        const Tensor<1, 3> u     = sums.laplacian[i] / m - c0 * nu;
+        const double       m  = sums.mass[i];
+        const double       w  = sums.normal[i].norm();
+        const Tensor<1, 3> nu = sums.normal[i] / w;
+        const Tensor<1, 3> u  = sums.laplacian[i] / m - c0 * nu;
         energy.bending += kappa / 2. * m * (u * u);
         d_laplacian[i] = kappa * u;
-        d_mass[i]      = kappa / 2. * (u * u) - kappa * (u * sums.laplacian[i]) / m;
-        d_normal[i]    = -kappa * c0 * m / w * (u - (u * nu) * nu);
+        d_mass[i] = kappa / 2. * (u * u) - kappa * (u * sums.laplacian[i]) / m;
+        d_normal[i] = -kappa * c0 * m / w * (u - (u * nu) * nu);
       }
     if (forces.size() == 0)
       return energy;
@@ -342,7 +355,7 @@ namespace rbc_ifem
     // derivative is taken in forward mode with a Sacado number whose length
     // (the cell's DoFs) is known at compile time for the degrees in use:
     // no heap allocation per operation, several times faster than DFad.
-    forces = 0.;
+    forces                             = 0.;
     const auto subtract_cell_gradients = [&](auto ad_number) {
       using ADNumber = decltype(ad_number);
       for (unsigned int c = 0; c < cell_dofs.size(); ++c)
@@ -352,12 +365,13 @@ namespace rbc_ifem
           for (unsigned int k = 0; k < values.size(); ++k)
             local[k] = ADNumber(values.size(), k, values[k]);
           const CellTerms<ADNumber> terms = cell_terms(c, local);
-          ADNumber phi = terms.in_plane + d_area * terms.area + d_volume * terms.volume;
+          ADNumber                  phi =
+            terms.in_plane + d_area * terms.area + d_volume * terms.volume;
           for (unsigned int a = 0; a < cell_nodes[c].size(); ++a)
             {
               const unsigned int i = cell_nodes[c][a];
-              phi += d_laplacian[i] * terms.laplacian[a] + d_mass[i] * terms.mass[a] +
-                     d_normal[i] * terms.normal[a];
+              phi += d_laplacian[i] * terms.laplacian[a] +
+                     d_mass[i] * terms.mass[a] + d_normal[i] * terms.normal[a];
             }
           for (unsigned int k = 0; k < values.size(); ++k)
             forces[cell_dofs[c][k]] -= phi.dx(k);
@@ -409,16 +423,17 @@ namespace rbc_ifem
   }
 
   void
-  Membrane::write_vtu(const Vector<double> &                                   x,
-                      const std::string &                                      directory,
-                      const std::string &                                      name,
-                      const std::vector<std::pair<std::string, Vector<double>>> &dof_vectors) const
+  Membrane::write_vtu(const Vector<double> &x,
+                      const std::string    &directory,
+                      const std::string    &name,
+                      const std::vector<std::pair<std::string, Vector<double>>>
+                        &dof_vectors) const
   {
     Vector<double> displacement(x);
     displacement -= reference;
     const MappingFEField<2, 3, Vector<double>> mapping(dof_handler, x);
-    const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_field(
-      3, DataComponentInterpretation::component_is_part_of_vector);
+    const std::vector<DataComponentInterpretation::DataComponentInterpretation>
+      vector_field(3, DataComponentInterpretation::component_is_part_of_vector);
     DataOut<2, 3> data_out;
     data_out.attach_dof_handler(dof_handler);
     data_out.add_data_vector(displacement,
@@ -430,14 +445,17 @@ namespace rbc_ifem
                                std::vector<std::string>(3, field_name),
                                DataOut<2, 3>::type_dof_data,
                                vector_field);
-    data_out.build_patches(mapping, std::max(2u, parameters.degree), DataOut<2, 3>::curved_inner_cells);
+    data_out.build_patches(mapping,
+                           std::max(2u, parameters.degree),
+                           DataOut<2, 3>::curved_inner_cells);
     data_out.set_flags(fast_vtk_flags());
     write_file_atomically(directory + "/" + name + ".vtu",
                           [&](std::ostream &out) { data_out.write_vtu(out); });
   }
 
   void
-  Membrane::build_surface(const Vector<double> &x, Triangulation<2, 3> &surface) const
+  Membrane::build_surface(const Vector<double> &x,
+                          Triangulation<2, 3>  &surface) const
   {
     surface.clear();
     surface.copy_triangulation(dof_handler.get_triangulation());

@@ -1,5 +1,5 @@
-#include <rbc_ifem/membrane/membrane_equilibrium.h>
 #include <rbc_ifem/base/solver_failure.h>
+#include <rbc_ifem/membrane/membrane_equilibrium.h>
 
 #include <cmath>
 #include <deque>
@@ -11,11 +11,11 @@ namespace rbc_ifem
   {
     /// Π(x) = E(x) - f·x, and its gradient -(F(x) + f).
     double
-    potential(const Membrane &      membrane,
+    potential(const Membrane       &membrane,
               const Vector<double> &f,
               const Vector<double> &x,
-              Vector<double> &      gradient,
-              MembraneEnergy &      energy)
+              Vector<double>       &gradient,
+              MembraneEnergy       &energy)
     {
       energy = membrane.energy_and_forces(x, gradient);
       gradient += f;
@@ -29,9 +29,10 @@ namespace rbc_ifem
     {
       double largest = 0.;
       for (const auto &dofs : membrane.nodes())
-        largest = std::max(largest,
-                           std::sqrt(g[dofs[0]] * g[dofs[0]] + g[dofs[1]] * g[dofs[1]] +
-                                     g[dofs[2]] * g[dofs[2]]));
+        largest =
+          std::max(largest,
+                   std::sqrt(g[dofs[0]] * g[dofs[0]] + g[dofs[1]] * g[dofs[1]] +
+                             g[dofs[2]] * g[dofs[2]]));
       return largest;
     }
 
@@ -40,7 +41,9 @@ namespace rbc_ifem
 
     /// d = -H g by the two-loop recursion, H0 = (s·y / y·y) I.
     void
-    quasi_newton_direction(const History &history, const Vector<double> &g, Vector<double> &d)
+    quasi_newton_direction(const History        &history,
+                           const Vector<double> &g,
+                           Vector<double>       &d)
     {
       d = g;
       std::vector<double> alpha(history.size());
@@ -71,16 +74,16 @@ namespace rbc_ifem
      * halved like any other. Returns false if 40 halvings found no step.
      */
     bool
-    line_search(const Membrane &      membrane,
+    line_search(const Membrane       &membrane,
                 const Vector<double> &f,
                 const Vector<double> &x,
                 const double          pi,
                 const Vector<double> &g,
                 const Vector<double> &d,
-                Vector<double> &      trial,
-                double &              pi_trial,
-                Vector<double> &      g_trial,
-                MembraneEnergy &      energy)
+                Vector<double>       &trial,
+                double               &pi_trial,
+                Vector<double>       &g_trial,
+                MembraneEnergy       &energy)
     {
       const double slope = g * d;
       double       step  = 1.;
@@ -91,7 +94,8 @@ namespace rbc_ifem
           pi_trial          = potential(membrane, f, trial, g_trial, energy);
           const bool armijo = pi_trial <= pi + 1e-4 * step * slope;
           const bool approximate_wolfe =
-            pi_trial <= pi + 1e-12 * std::abs(pi) && g_trial * d <= -0.8 * slope;
+            pi_trial <= pi + 1e-12 * std::abs(pi) &&
+            g_trial * d <= -0.8 * slope;
           if (std::isfinite(pi_trial) && (armijo || approximate_wolfe))
             return true;
         }
@@ -100,19 +104,20 @@ namespace rbc_ifem
   } // namespace
 
   EquilibriumReport
-  find_equilibrium(const Membrane &      membrane,
+  find_equilibrium(const Membrane       &membrane,
                    const Vector<double> &f,
-                   Vector<double> &      x,
+                   Vector<double>       &x,
                    const double          tolerance,
                    const unsigned int    max_iterations)
   {
     constexpr unsigned int memory = 20;
     EquilibriumReport      report;
-    Vector<double>         g(x.size()), trial(x.size()), g_trial(x.size()), d(x.size());
-    double                 pi = potential(membrane, f, x, g, report.energy);
-    History                history;
+    Vector<double> g(x.size()), trial(x.size()), g_trial(x.size()), d(x.size());
+    double         pi = potential(membrane, f, x, g, report.energy);
+    History        history;
 
-    for (report.iterations = 0; report.iterations < max_iterations; ++report.iterations)
+    for (report.iterations = 0; report.iterations < max_iterations;
+         ++report.iterations)
       {
         report.residual = largest_nodal_force(membrane, g);
         if (report.residual < tolerance)
@@ -126,16 +131,19 @@ namespace rbc_ifem
         double         pi_trial = 0.;
         MembraneEnergy energy;
         if (!(d * g < 0.) ||
-            !line_search(membrane, f, x, pi, g, d, trial, pi_trial, g_trial, energy))
+            !line_search(
+              membrane, f, x, pi, g, d, trial, pi_trial, g_trial, energy))
           {
             history.clear();
             d = g;
             d *= -1e-3 / std::max(1., report.residual);
-            if (!line_search(membrane, f, x, pi, g, d, trial, pi_trial, g_trial, energy))
-              throw SolverFailure("membrane equilibrium: the line search found no "
-                                  "decrease of the energy (largest nodal residual " +
-                                  std::to_string(report.residual) +
-                                  " pN). Is Residual tolerance below round-off?");
+            if (!line_search(
+                  membrane, f, x, pi, g, d, trial, pi_trial, g_trial, energy))
+              throw SolverFailure(
+                "membrane equilibrium: the line search found no "
+                "decrease of the energy (largest nodal residual " +
+                std::to_string(report.residual) +
+                " pN). Is Residual tolerance below round-off?");
           }
 
         Vector<double> s(trial), y(g_trial);
@@ -153,8 +161,11 @@ namespace rbc_ifem
         report.energy = energy;
       }
     throw SolverFailure("membrane equilibrium: not converged in " +
-                        std::to_string(max_iterations) + " L-BFGS iterations (largest nodal "
-                        "residual " + std::to_string(report.residual) + " pN, wanted " +
-                        std::to_string(tolerance) + " pN). Raise Stretching/Max iterations.");
+                        std::to_string(max_iterations) +
+                        " L-BFGS iterations (largest nodal "
+                        "residual " +
+                        std::to_string(report.residual) + " pN, wanted " +
+                        std::to_string(tolerance) +
+                        " pN). Raise Stretching/Max iterations.");
   }
 } // namespace rbc_ifem

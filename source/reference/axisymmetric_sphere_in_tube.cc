@@ -52,7 +52,7 @@ namespace rbc_ifem
     {
       std::vector<Point<2>>    vertices;
       std::vector<CellData<2>> cells;
-      const auto               add_cell = [&](const std::array<Point<2>, 4> &corners) {
+      const auto add_cell = [&](const std::array<Point<2>, 4> &corners) {
         CellData<2> cell;
         for (unsigned int v = 0; v < 4; ++v)
           {
@@ -64,32 +64,42 @@ namespace rbc_ifem
 
       // Four cells between the half circle and the square [-1, 1] x [0, 1],
       // each spanning 45 degrees; their second coordinate runs along the arc.
-      const std::array<Point<2>, 5> square = {
-        {Point<2>(1, 0), Point<2>(1, 1), Point<2>(0, 1), Point<2>(-1, 1), Point<2>(-1, 0)}};
+      const std::array<Point<2>, 5> square = {{Point<2>(1, 0),
+                                               Point<2>(1, 1),
+                                               Point<2>(0, 1),
+                                               Point<2>(-1, 1),
+                                               Point<2>(-1, 0)}};
       for (unsigned int k = 0; k < 4; ++k)
         {
-          const double angle = k * numbers::PI / 4, next = (k + 1) * numbers::PI / 4;
-          add_cell({{Point<2>(lambda * std::cos(angle), lambda * std::sin(angle)),
-                     square[k],
-                     Point<2>(lambda * std::cos(next), lambda * std::sin(next)),
-                     square[k + 1]}});
+          const double angle = k * numbers::PI / 4,
+                       next  = (k + 1) * numbers::PI / 4;
+          add_cell(
+            {{Point<2>(lambda * std::cos(angle), lambda * std::sin(angle)),
+              square[k],
+              Point<2>(lambda * std::cos(next), lambda * std::sin(next)),
+              square[k + 1]}});
         }
       // Cells of about 1 x 1 from the square out to both ends.
-      const unsigned int n_end_cells = std::max(1., std::round(half_length - 1.));
-      const double       dz          = (half_length - 1.) / n_end_cells;
+      const unsigned int n_end_cells =
+        std::max(1., std::round(half_length - 1.));
+      const double dz = (half_length - 1.) / n_end_cells;
       for (unsigned int j = 0; j < n_end_cells; ++j)
         for (const double side : {-1., 1.})
           {
-            const double z0 = side * (1. + j * dz), z1 = side * (1. + (j + 1) * dz);
+            const double z0 = side * (1. + j * dz),
+                         z1 = side * (1. + (j + 1) * dz);
             add_cell({{Point<2>(std::min(z0, z1), 0),
                        Point<2>(std::max(z0, z1), 0),
                        Point<2>(std::min(z0, z1), 1),
                        Point<2>(std::max(z0, z1), 1)}});
           }
 
-      SubCellData  no_subcell_data;
+      SubCellData               no_subcell_data;
       std::vector<unsigned int> all_vertices;
-      GridTools::delete_duplicated_vertices(vertices, cells, no_subcell_data, all_vertices);
+      GridTools::delete_duplicated_vertices(vertices,
+                                            cells,
+                                            no_subcell_data,
+                                            all_vertices);
       GridTools::consistently_order_cells(cells);
       triangulation.create_triangulation(vertices, cells, no_subcell_data);
 
@@ -121,7 +131,8 @@ namespace rbc_ifem
       triangulation.set_manifold(blend_manifold, blend);
     }
 
-    /// Poiseuille flow of centre-line speed 1 in the tube of radius 1: (1 - r², 0, 0).
+    /// Poiseuille flow of centre-line speed 1 in the tube of radius 1: (1 - r²,
+    /// 0, 0).
     class Poiseuille : public Function<2>
     {
     public:
@@ -147,7 +158,9 @@ namespace rbc_ifem
     class MeridianStokes
     {
     public:
-      MeridianStokes(const double lambda, const unsigned int n_refinements, const double half_length)
+      MeridianStokes(const double       lambda,
+                     const unsigned int n_refinements,
+                     const double       half_length)
         : fe(FE_Q<2>(2), 2, FE_Q<2>(1), 1)
         , mapping(3)
         , dof_handler(triangulation)
@@ -171,15 +184,18 @@ namespace rbc_ifem
        * the sphere exerts on the fluid, weighted with r).
        */
       double
-      axial_force(const Function<2> &end_velocity, const double sphere_speed) const
+      axial_force(const Function<2> &end_velocity,
+                  const double       sphere_speed) const
       {
         const Vector<double> solution = solve(end_velocity, sphere_speed);
         Vector<double>       residual(solution.size());
         operator_matrix.vmult(residual, solution);
 
         const FEValuesExtractors::Scalar axial(0);
-        const IndexSet                   sphere_dofs = DoFTools::extract_boundary_dofs(
-          dof_handler, fe.component_mask(axial), {MeridianBoundary::sphere});
+        const IndexSet                   sphere_dofs =
+          DoFTools::extract_boundary_dofs(dof_handler,
+                                          fe.component_mask(axial),
+                                          {MeridianBoundary::sphere});
         double sum = 0;
         for (const auto i : sphere_dofs)
           sum += residual[i];
@@ -207,12 +223,12 @@ namespace rbc_ifem
       void
       assemble_operator()
       {
-        const QGauss<2> quadrature(fe.degree + 1);
-        FEValues<2>     fe_values(mapping,
+        const QGauss<2>                      quadrature(fe.degree + 1);
+        FEValues<2>                          fe_values(mapping,
                               fe,
                               quadrature,
-                              update_values | update_gradients | update_quadrature_points |
-                                update_JxW_values);
+                              update_values | update_gradients |
+                                update_quadrature_points | update_JxW_values);
         const FEValuesExtractors::Vector     velocity(0);
         const FEValuesExtractors::Scalar     pressure(2);
         const unsigned int                   n = fe.n_dofs_per_cell();
@@ -230,21 +246,25 @@ namespace rbc_ifem
                 const double r = fe_values.quadrature_point(k)[1];
                 for (unsigned int i = 0; i < n; ++i)
                   {
-                    strain[i]     = fe_values[velocity].symmetric_gradient(i, k);
-                    hoop[i]       = fe_values[velocity].value(i, k)[1] / r;
-                    divergence[i] = fe_values[velocity].divergence(i, k) + hoop[i];
-                    q[i]          = fe_values[pressure].value(i, k);
+                    strain[i] = fe_values[velocity].symmetric_gradient(i, k);
+                    hoop[i]   = fe_values[velocity].value(i, k)[1] / r;
+                    divergence[i] =
+                      fe_values[velocity].divergence(i, k) + hoop[i];
+                    q[i] = fe_values[pressure].value(i, k);
                   }
                 for (unsigned int i = 0; i < n; ++i)
                   for (unsigned int j = 0; j < n; ++j)
-                    cell_matrix(i, j) += (2. * (strain[i] * strain[j] + hoop[i] * hoop[j]) -
-                                          divergence[i] * q[j] - q[i] * divergence[j]) *
-                                         r * fe_values.JxW(k);
+                    cell_matrix(i, j) +=
+                      (2. * (strain[i] * strain[j] + hoop[i] * hoop[j]) -
+                       divergence[i] * q[j] - q[i] * divergence[j]) *
+                      r * fe_values.JxW(k);
               }
             cell->get_dof_indices(dof_indices);
             for (unsigned int i = 0; i < n; ++i)
               for (unsigned int j = 0; j < n; ++j)
-                operator_matrix.add(dof_indices[i], dof_indices[j], cell_matrix(i, j));
+                operator_matrix.add(dof_indices[i],
+                                    dof_indices[j],
+                                    cell_matrix(i, j));
           }
       }
 
@@ -255,23 +275,40 @@ namespace rbc_ifem
        * so the dropped continuity equation holds anyway).
        */
       AffineConstraints<double>
-      boundary_constraints(const Function<2> &end_velocity, const double sphere_speed) const
+      boundary_constraints(const Function<2> &end_velocity,
+                           const double       sphere_speed) const
       {
         AffineConstraints<double>        constraints;
         const FEValuesExtractors::Vector velocity(0);
         const FEValuesExtractors::Scalar radial(1), pressure(2);
-        const ComponentMask              velocity_mask = fe.component_mask(velocity);
-        const Functions::ZeroFunction<2> zero(3);
+        const ComponentMask velocity_mask = fe.component_mask(velocity);
+        const Functions::ZeroFunction<2>     zero(3);
         const Functions::ConstantFunction<2> sphere_velocity(
           std::vector<double>{sphere_speed, 0., 0.});
-        VectorTools::interpolate_boundary_values(
-          mapping, dof_handler, MeridianBoundary::axis, zero, constraints, fe.component_mask(radial));
-        VectorTools::interpolate_boundary_values(
-          mapping, dof_handler, MeridianBoundary::wall, zero, constraints, velocity_mask);
-        VectorTools::interpolate_boundary_values(
-          mapping, dof_handler, MeridianBoundary::ends, end_velocity, constraints, velocity_mask);
-        VectorTools::interpolate_boundary_values(
-          mapping, dof_handler, MeridianBoundary::sphere, sphere_velocity, constraints, velocity_mask);
+        VectorTools::interpolate_boundary_values(mapping,
+                                                 dof_handler,
+                                                 MeridianBoundary::axis,
+                                                 zero,
+                                                 constraints,
+                                                 fe.component_mask(radial));
+        VectorTools::interpolate_boundary_values(mapping,
+                                                 dof_handler,
+                                                 MeridianBoundary::wall,
+                                                 zero,
+                                                 constraints,
+                                                 velocity_mask);
+        VectorTools::interpolate_boundary_values(mapping,
+                                                 dof_handler,
+                                                 MeridianBoundary::ends,
+                                                 end_velocity,
+                                                 constraints,
+                                                 velocity_mask);
+        VectorTools::interpolate_boundary_values(mapping,
+                                                 dof_handler,
+                                                 MeridianBoundary::sphere,
+                                                 sphere_velocity,
+                                                 constraints,
+                                                 velocity_mask);
         const IndexSet pressure_dofs =
           DoFTools::extract_dofs(dof_handler, fe.component_mask(pressure));
         constraints.add_line(*pressure_dofs.begin());
@@ -279,7 +316,8 @@ namespace rbc_ifem
         return constraints;
       }
 
-      /// The operator with the prescribed rows and columns replaced by the identity, factorized.
+      /// The operator with the prescribed rows and columns replaced by the
+      /// identity, factorized.
       void
       factorize_constrained_operator()
       {
@@ -290,7 +328,8 @@ namespace rbc_ifem
         for (unsigned int i = 0; i < dof_handler.n_dofs(); ++i)
           if (constraints.is_constrained(i))
             {
-              for (auto entry = matrix.begin(i); entry != matrix.end(i); ++entry)
+              for (auto entry = matrix.begin(i); entry != matrix.end(i);
+                   ++entry)
                 if (entry->column() != i)
                   {
                     entry->value() = 0.;
@@ -301,13 +340,15 @@ namespace rbc_ifem
         constrained_operator.initialize(matrix);
       }
 
-      /// The flow for the given boundary velocities: the prescribed values moved to the right.
+      /// The flow for the given boundary velocities: the prescribed values
+      /// moved to the right.
       Vector<double>
       solve(const Function<2> &end_velocity, const double sphere_speed) const
       {
         const AffineConstraints<double> constraints =
           boundary_constraints(end_velocity, sphere_speed);
-        Vector<double> prescribed(dof_handler.n_dofs()), solution(dof_handler.n_dofs());
+        Vector<double> prescribed(dof_handler.n_dofs()),
+          solution(dof_handler.n_dofs());
         constraints.distribute(prescribed);
         operator_matrix.vmult(solution, prescribed);
         solution *= -1.;
@@ -335,18 +376,22 @@ namespace rbc_ifem
                               const unsigned int n_refinements,
                               const double       half_length)
   {
-    AssertThrow(lambda > 0. && lambda <= 0.9, ExcMessage("λ must lie in (0, 0.9]"));
-    AssertThrow(half_length >= 2., ExcMessage("the half length must be at least 2 radii"));
+    AssertThrow(lambda > 0. && lambda <= 0.9,
+                ExcMessage("λ must lie in (0, 0.9]"));
+    AssertThrow(half_length >= 2.,
+                ExcMessage("the half length must be at least 2 radii"));
 
     const MeridianStokes stokes(lambda, n_refinements, half_length);
-    const double         stokes_drag = 6. * numbers::PI * lambda; // 6π μ a U, μ = R = U = 1
+    const double         stokes_drag =
+      6. * numbers::PI * lambda; // 6π μ a U, μ = R = U = 1
 
     SphereInTubeDrag drag;
-    drag.towed_drag_factor = -stokes.axial_force(Functions::ZeroFunction<2>(3), 1.) / stokes_drag;
-    drag.held_drag_factor  = stokes.axial_force(Poiseuille(), 0.) / stokes_drag;
-    drag.velocity_ratio    = drag.held_drag_factor / drag.towed_drag_factor;
-    drag.n_cells           = stokes.n_cells();
-    drag.n_dofs            = stokes.n_dofs();
+    drag.towed_drag_factor =
+      -stokes.axial_force(Functions::ZeroFunction<2>(3), 1.) / stokes_drag;
+    drag.held_drag_factor = stokes.axial_force(Poiseuille(), 0.) / stokes_drag;
+    drag.velocity_ratio   = drag.held_drag_factor / drag.towed_drag_factor;
+    drag.n_cells          = stokes.n_cells();
+    drag.n_dofs           = stokes.n_dofs();
     return drag;
   }
 } // namespace rbc_ifem

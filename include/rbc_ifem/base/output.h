@@ -27,7 +27,8 @@ namespace rbc_ifem
    * every rank, naming `Output directory`, if that is impossible.
    */
   void
-  create_output_directory(const std::string &directory, const MPI_Comm communicator);
+  create_output_directory(const std::string &directory,
+                          const MPI_Comm     communicator);
 
   /**
    * VTU flags for every file we write: deal.II's default, the best zlib
@@ -39,14 +40,14 @@ namespace rbc_ifem
 
   /// Write NAME.pvd listing (time, file) pairs, rank 0 only.
   void
-  write_pvd(const std::string &                               directory,
-            const std::string &                               name,
+  write_pvd(const std::string                                 &directory,
+            const std::string                                 &name,
             const std::vector<std::pair<double, std::string>> &records,
-            const MPI_Comm                                    communicator);
+            const MPI_Comm                                     communicator);
 
   /// Write @p path through @p writer, via a temporary file and a rename.
   void
-  write_file_atomically(const std::string &                        path,
+  write_file_atomically(const std::string                         &path,
                         const std::function<void(std::ostream &)> &writer);
 
   /**
@@ -57,8 +58,8 @@ namespace rbc_ifem
    */
   void
   write_volume_mesh(const Triangulation<3> &triangulation,
-                    const std::string &     directory,
-                    const std::string &     name,
+                    const std::string      &directory,
+                    const std::string      &name,
                     const MPI_Comm          communicator);
 
   /**
@@ -70,11 +71,11 @@ namespace rbc_ifem
    */
   std::string
   write_membranes(
-    const std::vector<const Triangulation<2, 3> *> &                  surfaces,
-    const MappingQ<2, 3> &                                            mapping,
-    const std::string &                                               directory,
-    const std::string &                                               name,
-    const MPI_Comm                                                    communicator,
+    const std::vector<const Triangulation<2, 3> *>           &surfaces,
+    const MappingQ<2, 3>                                     &mapping,
+    const std::string                                        &directory,
+    const std::string                                        &name,
+    const MPI_Comm                                            communicator,
     const std::function<void(unsigned int, DataOut<2, 3> &)> &add_fields = {});
   /// The peak resident memory of the largest rank, in MB.
   double

@@ -23,11 +23,12 @@ namespace rbc_ifem
   /// Size and shape of one deformed cell, the columns of cells.csv.
   struct CellShape
   {
-    Point<3> centroid;           ///< of the enclosed volume [µm]
-    double   area   = 0.;        ///< [µm²]
-    double   volume = 0.;        ///< [µm³]
-    double   axial_length = 0.;  ///< extent along the capillary axis x [µm]
-    double   max_radius   = 0.;  ///< largest distance from the x-parallel line through the centroid [µm]
+    Point<3> centroid;          ///< of the enclosed volume [µm]
+    double   area         = 0.; ///< [µm²]
+    double   volume       = 0.; ///< [µm³]
+    double   axial_length = 0.; ///< extent along the capillary axis x [µm]
+    double   max_radius   = 0.; ///< largest distance from the x-parallel line
+                                ///< through the centroid [µm]
     /// (L - 2r)/(L + 2r) with L the axial length and r the largest radius:
     /// -0.56 for the biconcave disc facing the flow, growing as it folds.
     double deformation_index = 0.;
@@ -49,8 +50,8 @@ namespace rbc_ifem
   {
   public:
     CellPopulation(const std::vector<CellPlacement> &placements,
-                   const CellParameters &            cells,
-                   const MembraneParameters &        membrane);
+                   const CellParameters             &cells,
+                   const MembraneParameters         &membrane);
 
     unsigned int
     size() const;
@@ -114,7 +115,9 @@ namespace rbc_ifem
      * displacement and the last forces; returns the file names.
      */
     std::vector<std::string>
-    write_vtu(const std::string &directory, const std::string &name, const unsigned int counter) const;
+    write_vtu(const std::string &directory,
+              const std::string &name,
+              const unsigned int counter) const;
 
     /// The positions of every cell, for a checkpoint.
     const std::vector<Vector<double>> &

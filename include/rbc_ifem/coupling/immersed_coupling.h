@@ -46,8 +46,8 @@ namespace rbc_ifem
   public:
     /// The first three components of the fluid FE must be the velocity.
     ImmersedCoupling(const parallel::shared::Triangulation<3> &triangulation,
-                     const Mapping<3> &                        mapping,
-                     const DoFHandler<3> &                     fluid_dof_handler);
+                     const Mapping<3>                         &mapping,
+                     const DoFHandler<3> &fluid_dof_handler);
 
     /**
      * Place the points, at the start and after every move (the same list on
@@ -65,8 +65,8 @@ namespace rbc_ifem
      * layout, compressed here), condensed with @p constraints.
      */
     void
-    spread(const std::vector<Tensor<1, 3>> &   forces,
-           const AffineConstraints<double> &   constraints,
+    spread(const std::vector<Tensor<1, 3>>    &forces,
+           const AffineConstraints<double>    &constraints,
            TrilinosWrappers::MPI::BlockVector &load) const;
 
     /**
@@ -100,10 +100,11 @@ namespace rbc_ifem
     for_each_particle_cell(const CellFunction &f) const;
 
     const parallel::shared::Triangulation<3> &triangulation;
-    const DoFHandler<3> &                     dof_handler;
+    const DoFHandler<3>                      &dof_handler;
     const GridTools::Cache<3>                 cache;
     Particles::ParticleHandler<3>             particles;
-    /// Per point, the fluid cell it was last found in: where the next search starts.
+    /// Per point, the fluid cell it was last found in: where the next search
+    /// starts.
     std::vector<Triangulation<3>::active_cell_iterator> cell_hints;
     unsigned int                                        n_membrane_points = 0;
     /// (local DoF k, velocity component c) of every velocity shape function.

@@ -65,11 +65,11 @@ namespace rbc_ifem
      * [µm²/(s Torr)]; @p pressure_boundary is the boundary id where
      * P = P_A holds.
      */
-    CODiffusion(const DiffusionParameters &                parameters,
+    CODiffusion(const DiffusionParameters                 &parameters,
                 const std::function<double(unsigned int)> &permeability,
                 const types::boundary_id                   pressure_boundary,
                 const MPI_Comm                             communicator,
-                TimerOutput &                              timer);
+                TimerOutput                               &timer);
     ~CODiffusion();
 
     /**
@@ -78,9 +78,9 @@ namespace rbc_ifem
      * patterns. Throws InputError if a membrane leaves the mesh.
      */
     void
-    setup(const parallel::shared::Triangulation<3> &      mesh,
+    setup(const parallel::shared::Triangulation<3>       &mesh,
           const std::vector<const Triangulation<2, 3> *> &membranes,
-          const MappingQ<2, 3> &                          membrane_mapping);
+          const MappingQ<2, 3>                           &membrane_mapping);
 
     /// Assemble the matrices and build the preconditioner.
     void
@@ -163,7 +163,7 @@ namespace rbc_ifem
     const std::function<double(unsigned int)> permeability;
     const types::boundary_id                  pressure_boundary;
     const MPI_Comm                            communicator;
-    TimerOutput &                             timer;
+    TimerOutput                              &timer;
 
     const parallel::shared::Triangulation<3> *mesh = nullptr;
     FE_Q<3>                                   fe;
@@ -172,24 +172,24 @@ namespace rbc_ifem
     IndexSet                                  owned_dofs;
     AffineConstraints<double>                 constraints;
 
-    std::vector<const Triangulation<2, 3> *>        membranes;
-    const MappingQ<2, 3> *                          membrane_mapping = nullptr;
-    FE_Q<2, 3>                                      multiplier_fe;
-    std::vector<std::unique_ptr<DoFHandler<2, 3>>>  multiplier_dof_handlers;
-    std::vector<types::global_dof_index>            multiplier_offsets;
-    IndexSet                                        owned_multipliers;
-    std::unique_ptr<CouplingData>                   coupling;
+    std::vector<const Triangulation<2, 3> *>       membranes;
+    const MappingQ<2, 3>                          *membrane_mapping = nullptr;
+    FE_Q<2, 3>                                     multiplier_fe;
+    std::vector<std::unique_ptr<DoFHandler<2, 3>>> multiplier_dof_handlers;
+    std::vector<types::global_dof_index>           multiplier_offsets;
+    IndexSet                                       owned_multipliers;
+    std::unique_ptr<CouplingData>                  coupling;
 
     /// Scale of the constraint rows, αD_plasma / h_Γ, so both rows of the
     /// system have the units of the P equation (see doc/diffusion.md).
     double constraint_scale = 1.;
 
-    TrilinosWrappers::SparseMatrix    stiffness;    ///< A + γ Bᵀ W B
-    TrilinosWrappers::SparseMatrix    coupling_matrix; ///< B, λ rows × P columns
-    SparsityPattern                   coupling_sparsity;
-    SparseMatrix<double>              full_coupling_matrix; ///< all of B, every rank
-    TrilinosWrappers::MPI::Vector     multiplier_weights; ///< γ W
-    TrilinosWrappers::PreconditionAMG amg;
+    TrilinosWrappers::SparseMatrix stiffness;       ///< A + γ Bᵀ W B
+    TrilinosWrappers::SparseMatrix coupling_matrix; ///< B, λ rows × P columns
+    SparsityPattern                coupling_sparsity;
+    SparseMatrix<double> full_coupling_matrix; ///< all of B, every rank
+    TrilinosWrappers::MPI::Vector      multiplier_weights; ///< γ W
+    TrilinosWrappers::PreconditionAMG  amg;
     TrilinosWrappers::MPI::BlockVector solution;
     TrilinosWrappers::MPI::BlockVector rhs;
 

@@ -10,7 +10,6 @@
 #include <deal.II/grid/tria.h>
 
 #include <functional>
-
 #include <string>
 #include <vector>
 
@@ -39,13 +38,14 @@ namespace rbc_ifem
    * The hematocrit of the result is left to the caller.
    */
   LayoutUptake
-  solve_uptake(const Parameters &                              parameters,
-               const std::vector<const Triangulation<2, 3> *> &surfaces,
-               const MappingQ<2, 3> &                          mapping,
-               const unsigned int                              band_refinements,
-               const MPI_Comm                                  communicator,
-               TimerOutput &                                   timer,
-               const std::function<void(const CODiffusion &)> &write_fields = {});
+  solve_uptake(
+    const Parameters                               &parameters,
+    const std::vector<const Triangulation<2, 3> *> &surfaces,
+    const MappingQ<2, 3>                           &mapping,
+    const unsigned int                              band_refinements,
+    const MPI_Comm                                  communicator,
+    TimerOutput                                    &timer,
+    const std::function<void(const CODiffusion &)> &write_fields = {});
 
   /**
    * Build the layout @p layout of the run's cells, their membranes
@@ -55,13 +55,13 @@ namespace rbc_ifem
    * FIELDS_* and cells.csv to the run's output directory.
    */
   LayoutUptake
-  solve_layout(const Parameters &      parameters,
+  solve_layout(const Parameters       &parameters,
                const LayoutParameters &layout,
                const unsigned int      surface_refinements,
                const unsigned int      band_refinements,
                const MPI_Comm          communicator,
-               TimerOutput &           timer,
-               const std::string &     fields = "");
+               TimerOutput            &timer,
+               const std::string      &fields = "");
 
   /**
    * The CO uptake experiments, each a steady diffusion solve (CODiffusion)
@@ -83,7 +83,8 @@ namespace rbc_ifem
   class DiffusionExperiment
   {
   public:
-    DiffusionExperiment(const Parameters &parameters, const MPI_Comm communicator);
+    DiffusionExperiment(const Parameters &parameters,
+                        const MPI_Comm    communicator);
 
     void
     run(const ParameterHandler &prm);

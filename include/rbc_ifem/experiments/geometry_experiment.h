@@ -24,7 +24,8 @@ namespace rbc_ifem
   class GeometryExperiment
   {
   public:
-    GeometryExperiment(const Parameters &parameters, const MPI_Comm communicator);
+    GeometryExperiment(const Parameters &parameters,
+                       const MPI_Comm    communicator);
 
     /// Build and check everything, then write it (with @p prm as used).
     void
@@ -38,9 +39,9 @@ namespace rbc_ifem
     void
     write_output(const ParameterHandler &prm) const;
 
-    const Parameters   parameters;
-    const MPI_Comm     communicator;
-    ConditionalOStream pcout;
+    const Parameters    parameters;
+    const MPI_Comm      communicator;
+    ConditionalOStream  pcout;
     mutable TimerOutput timer;
 
     const CellLayout    layout;

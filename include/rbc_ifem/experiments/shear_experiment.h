@@ -16,14 +16,14 @@ namespace rbc_ifem
   /// The steady state of one capsule run, a row of shear_summary.csv.
   struct ShearSummary
   {
-    double       capillary_number   = 0.;
-    double       steady_deformation = 0.; ///< mean D over the steadiest window
-    double       steady_inclination = 0.; ///< mean θ/π over the steadiest window
-    double       steady_from        = 0.; ///< γ̇ t where that window starts
-    double       steady_to          = 0.; ///< and where it ends
-    double       time_step          = 0.; ///< [s]
-    unsigned int n_steps            = 0;
-    double       wall_seconds       = 0.;
+    double capillary_number   = 0.;
+    double steady_deformation = 0.; ///< mean D over the steadiest window
+    double steady_inclination = 0.; ///< mean θ/π over the steadiest window
+    double steady_from        = 0.; ///< γ̇ t where that window starts
+    double steady_to          = 0.; ///< and where it ends
+    double time_step          = 0.; ///< [s]
+    unsigned int n_steps      = 0;
+    double       wall_seconds = 0.;
   };
 
   /**
@@ -67,8 +67,8 @@ namespace rbc_ifem
     const Parameters   parameters;
     const MPI_Comm     communicator;
     ConditionalOStream pcout;
-    double             point_spacing = 0.; ///< of the capsule's membrane points [µm]
-    double             mesh_size     = 0.; ///< fluid cell edge at the capsule [µm]
+    double point_spacing = 0.; ///< of the capsule's membrane points [µm]
+    double mesh_size     = 0.; ///< fluid cell edge at the capsule [µm]
   };
 } // namespace rbc_ifem
 

@@ -29,7 +29,8 @@ namespace rbc_ifem
   class StretchingExperiment
   {
   public:
-    StretchingExperiment(const Parameters &parameters, const MPI_Comm communicator);
+    StretchingExperiment(const Parameters &parameters,
+                         const MPI_Comm    communicator);
 
     void
     run(const ParameterHandler &prm);

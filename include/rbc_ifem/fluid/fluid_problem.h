@@ -33,9 +33,9 @@ namespace rbc_ifem
   class PoiseuilleFlow : public Function<3>
   {
   public:
-    PoiseuilleFlow(const double mean_speed,
-                   const double frame_velocity,
-                   const double viscosity,
+    PoiseuilleFlow(const double              mean_speed,
+                   const double              frame_velocity,
+                   const double              viscosity,
                    const GeometryParameters &geometry);
 
     double
@@ -70,7 +70,8 @@ namespace rbc_ifem
   {
     std::map<types::boundary_id, std::shared_ptr<const Function<3>>> dirichlet;
 
-    /// The capillary: no slip on the wall, Poiseuille of mean speed ū at the inlet.
+    /// The capillary: no slip on the wall, Poiseuille of mean speed ū at the
+    /// inlet.
     static FlowDrive
     capillary(const FluidParameters &fluid, const GeometryParameters &geometry);
     /// The shear box: simple shear of rate γ̇ [1/s] on the walls y, z = const.
@@ -81,8 +82,9 @@ namespace rbc_ifem
   /// Integral quantities of a flow field, as flow.csv reports them.
   struct FlowMeasures
   {
-    double flow_rate     = 0.; ///< ∫ v·n over the outlet [µm³/s]
-    double pressure_drop = 0.; ///< mean inlet minus mean outlet pressure [pN/µm²]
+    double flow_rate = 0.; ///< ∫ v·n over the outlet [µm³/s]
+    double pressure_drop =
+      0.; ///< mean inlet minus mean outlet pressure [pN/µm²]
     double max_velocity  = 0.; ///< largest |v| at quadrature points [µm/s]
     double divergence_l2 = 0.; ///< ‖∇·v‖ in L2 [µm^1.5/s]
   };
@@ -90,9 +92,10 @@ namespace rbc_ifem
   /// What one time step took.
   struct StepReport
   {
-    unsigned int newton_iterations = 0;
-    unsigned int linear_iterations = 0; ///< FGMRES, summed over Newton
-    std::vector<double> residuals;      ///< ‖R‖ before each Newton update (and, Navier-Stokes, after the last)
+    unsigned int        newton_iterations = 0;
+    unsigned int        linear_iterations = 0; ///< FGMRES, summed over Newton
+    std::vector<double> residuals; ///< ‖R‖ before each Newton update (and,
+                                   ///< Navier-Stokes, after the last)
     /// ‖R‖ at the end of the step: for Stokes FGMRES's final residual (the
     /// problem is linear), for Navier-Stokes the last Newton residual.
     double final_residual = 0.;
@@ -155,12 +158,13 @@ namespace rbc_ifem
   {
   public:
     FluidProblem(const parallel::shared::Triangulation<3> &triangulation,
-                 const FluidParameters &                   parameters,
-                 const FlowDrive &                         drive,
+                 const FluidParameters                    &parameters,
+                 const FlowDrive                          &drive,
                  const double                              time_step,
-                 TimerOutput &                             timer);
+                 TimerOutput                              &timer);
 
-    /// Distribute DoFs, build constraints, matrices and (Stokes) the preconditioner.
+    /// Distribute DoFs, build constraints, matrices and (Stokes) the
+    /// preconditioner.
     void
     setup();
 
@@ -230,22 +234,24 @@ namespace rbc_ifem
     setup_matrices();
     /// Hanging nodes + the Dirichlet values of the drive in the frame U_frame, scaled by @p scale.
     void
-    make_constraints(AffineConstraints<double> &constraints, const double scale) const;
+    make_constraints(AffineConstraints<double> &constraints,
+                     const double               scale) const;
     void
     assemble_jacobian(const bool with_convection);
     void
     build_preconditioner();
     double
     assemble_residual(const bool with_convection);
-    /// Solve J δ = -R and update; returns FGMRES's iterations and final residual.
+    /// Solve J δ = -R and update; returns FGMRES's iterations and final
+    /// residual.
     std::pair<unsigned int, double>
     solve_linear_system();
 
-    const FluidParameters    parameters;
-    const FlowDrive          drive;
-    double                   time_step;
-    const MPI_Comm           communicator;
-    TimerOutput &            timer;
+    const FluidParameters parameters;
+    const FlowDrive       drive;
+    double                time_step;
+    const MPI_Comm        communicator;
+    TimerOutput          &timer;
 
     const parallel::shared::Triangulation<3> &triangulation;
     const MappingQ<3>                         mapping;
@@ -260,20 +266,22 @@ namespace rbc_ifem
     /// only when the frame velocity changes.
     AffineConstraints<double> boundary_constraints;
     double                    frame_velocity = 0.;
-    double                    constrained_frame_velocity = std::numeric_limits<double>::quiet_NaN();
-    double                    residual_scale = 0.; ///< largest residual norm so far
+    double                    constrained_frame_velocity =
+      std::numeric_limits<double>::quiet_NaN();
+    double residual_scale = 0.; ///< largest residual norm so far
 
     TrilinosWrappers::BlockSparseMatrix system_matrix; ///< the Jacobian
     TrilinosWrappers::BlockSparseMatrix schur_matrix;  ///< M_p in block (1,1)
     std::unique_ptr<TrilinosWrappers::PreconditionAMG> velocity_amg;
     std::unique_ptr<TrilinosWrappers::PreconditionILU> schur_ilu;
 
-    TrilinosWrappers::MPI::BlockVector current;     ///< ghosted (v, p)
-    TrilinosWrappers::MPI::BlockVector previous;    ///< ghosted (vⁿ, pⁿ)
-    TrilinosWrappers::MPI::BlockVector residual;    ///< owned
-    TrilinosWrappers::MPI::BlockVector update;      ///< owned
-    TrilinosWrappers::MPI::BlockVector body_force;  ///< owned load vector
-    TrilinosWrappers::MPI::BlockVector unit_axial_velocity; ///< owned, v = e_x, p = 0
+    TrilinosWrappers::MPI::BlockVector current;    ///< ghosted (v, p)
+    TrilinosWrappers::MPI::BlockVector previous;   ///< ghosted (vⁿ, pⁿ)
+    TrilinosWrappers::MPI::BlockVector residual;   ///< owned
+    TrilinosWrappers::MPI::BlockVector update;     ///< owned
+    TrilinosWrappers::MPI::BlockVector body_force; ///< owned load vector
+    TrilinosWrappers::MPI::BlockVector
+      unit_axial_velocity; ///< owned, v = e_x, p = 0
   };
 } // namespace rbc_ifem
 

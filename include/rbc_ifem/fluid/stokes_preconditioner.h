@@ -29,20 +29,21 @@ namespace rbc_ifem
   class StokesPreconditioner
   {
   public:
-    StokesPreconditioner(const TrilinosWrappers::BlockSparseMatrix &system_matrix,
-                         const TrilinosWrappers::SparseMatrix &     schur_approximation,
-                         const TrilinosWrappers::PreconditionAMG &  velocity_amg,
-                         const TrilinosWrappers::PreconditionILU &  schur_ilu);
+    StokesPreconditioner(
+      const TrilinosWrappers::BlockSparseMatrix &system_matrix,
+      const TrilinosWrappers::SparseMatrix      &schur_approximation,
+      const TrilinosWrappers::PreconditionAMG   &velocity_amg,
+      const TrilinosWrappers::PreconditionILU   &schur_ilu);
 
     void
-    vmult(TrilinosWrappers::MPI::BlockVector &      dst,
+    vmult(TrilinosWrappers::MPI::BlockVector       &dst,
           const TrilinosWrappers::MPI::BlockVector &src) const;
 
   private:
     const TrilinosWrappers::BlockSparseMatrix &system_matrix;
-    const TrilinosWrappers::SparseMatrix &     schur_approximation;
-    const TrilinosWrappers::PreconditionAMG &  velocity_amg;
-    const TrilinosWrappers::PreconditionILU &  schur_ilu;
+    const TrilinosWrappers::SparseMatrix      &schur_approximation;
+    const TrilinosWrappers::PreconditionAMG   &velocity_amg;
+    const TrilinosWrappers::PreconditionILU   &schur_ilu;
     mutable TrilinosWrappers::MPI::Vector      velocity_rhs;
   };
 } // namespace rbc_ifem

@@ -30,7 +30,7 @@ namespace rbc_ifem
     constexpr types::boundary_id wall   = 0; ///< r = Capillary radius
     constexpr types::boundary_id inlet  = 1; ///< x = 0
     constexpr types::boundary_id outlet = 2; ///< x = Capillary length
-  } // namespace FluidBoundary
+  }                                          // namespace FluidBoundary
 
   namespace DiffusionBoundary
   {
@@ -51,13 +51,13 @@ namespace rbc_ifem
    * (band refinement around cells is separate: refine_near_points()).
    */
   void
-  create_fluid_mesh(Triangulation<3> &triangulation,
+  create_fluid_mesh(Triangulation<3>         &triangulation,
                     const GeometryParameters &geometry,
                     const unsigned int        n_global_refinements);
 
   /// The lumen + wall + gas mesh for CO diffusion, globally refined.
   void
-  create_diffusion_mesh(Triangulation<3> &        triangulation,
+  create_diffusion_mesh(Triangulation<3>         &triangulation,
                         const GeometryParameters &geometry,
                         const unsigned int        n_global_refinements);
 
@@ -68,7 +68,7 @@ namespace rbc_ifem
    * Deterministic, so every rank of a shared triangulation does the same.
    */
   void
-  refine_near_points(Triangulation<3> &           triangulation,
+  refine_near_points(Triangulation<3>            &triangulation,
                      const std::vector<Point<3>> &points,
                      const double                 band_width,
                      const unsigned int           n_steps);

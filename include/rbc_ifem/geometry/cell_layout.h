@@ -29,9 +29,9 @@ namespace rbc_ifem
      * impossible: more cells than fit, or a cluster placed partly outside
      * the segment.
      */
-    CellLayout(const LayoutParameters &  layout,
+    CellLayout(const LayoutParameters   &layout,
                const GeometryParameters &geometry,
-               const CellParameters &    cells);
+               const CellParameters     &cells);
 
     const std::vector<CellPlacement> &
     placements() const;

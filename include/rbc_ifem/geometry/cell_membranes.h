@@ -15,14 +15,14 @@ namespace rbc_ifem
 {
   /**
    * The membrane meshes of every cell of a layout, in their reference
-   * shape (the Evans-Fung cell, or a sphere), with the MappingQ2 that curves them and their
-   * measured area, volume and centroid.
+   * shape (the Evans-Fung cell, or a sphere), with the MappingQ2 that curves
+   * them and their measured area, volume and centroid.
    */
   class CellMembranes
   {
   public:
     CellMembranes(const std::vector<CellPlacement> &placements,
-                  const EvansFungShape &            shape,
+                  const EvansFungShape             &shape,
                   const unsigned int                surface_refinements);
 
     unsigned int

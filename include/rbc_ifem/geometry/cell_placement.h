@@ -26,14 +26,14 @@ namespace rbc_ifem
     Tensor<2, 3>
     rotation() const
     {
-      const Tensor<1, 3> a = axis / axis.norm();
+      const Tensor<1, 3> a     = axis / axis.norm();
       unsigned int       least = 0;
       for (unsigned int d = 1; d < 3; ++d)
         if (std::abs(a[d]) < std::abs(a[least]))
           least = d;
       Tensor<1, 3> e;
-      e[least]               = 1.;
-      Tensor<1, 3>       u   = cross_product_3d(e, a);
+      e[least]       = 1.;
+      Tensor<1, 3> u = cross_product_3d(e, a);
       u /= u.norm();
       const Tensor<1, 3> v = cross_product_3d(a, u);
       Tensor<2, 3>       q;

@@ -22,17 +22,17 @@ namespace rbc_ifem
    * @p n_refinements times. The normals of the mesh point out of the cell.
    */
   void
-  create_cell_surface(Triangulation<2, 3> &  surface,
-                      const EvansFungShape & shape,
-                      const CellPlacement &  placement,
-                      const unsigned int     n_refinements);
+  create_cell_surface(Triangulation<2, 3>  &surface,
+                      const EvansFungShape &shape,
+                      const CellPlacement  &placement,
+                      const unsigned int    n_refinements);
 
   /// The integral measures of a closed surface mesh.
   struct SurfaceMeasures
   {
-    double   area = 0.;
-    double   volume = 0.;  ///< enclosed volume
-    Point<3> centroid;     ///< centroid of the enclosed volume
+    double   area   = 0.;
+    double   volume = 0.; ///< enclosed volume
+    Point<3> centroid;    ///< centroid of the enclosed volume
     /// ∫ (x - centroid) ⊗ (x - centroid) dV over the enclosed volume [µm⁵]:
     /// V a_i²/5 on the axes of an ellipsoid with semi-axes a_i.
     Tensor<2, 3> second_moment;
@@ -46,13 +46,13 @@ namespace rbc_ifem
    */
   SurfaceMeasures
   measure_surface(const Triangulation<2, 3> &surface,
-                  const MappingQ<2, 3> &      mapping);
+                  const MappingQ<2, 3>      &mapping);
 
   /// The ellipse of a body's cut by the x-y plane, the shear plane.
   struct ShearPlaneEllipse
   {
     double taylor_deformation = 0.; ///< (L - B)/(L + B)
-    double inclination        = 0.; ///< of L's axis from x, in (-π/2, π/2] [rad]
+    double inclination = 0.; ///< of L's axis from x, in (-π/2, π/2] [rad]
   };
 
   /**
@@ -67,9 +67,9 @@ namespace rbc_ifem
   /// The distances that tell whether cells overlap or touch the wall.
   struct Clearance
   {
-    double min_cell_gap  = std::numeric_limits<double>::infinity(); ///< [µm]
-    double min_wall_gap  = std::numeric_limits<double>::infinity(); ///< [µm]
-    std::pair<unsigned int, unsigned int> closest_cells{0, 0}; ///< indices
+    double min_cell_gap = std::numeric_limits<double>::infinity(); ///< [µm]
+    double min_wall_gap = std::numeric_limits<double>::infinity(); ///< [µm]
+    std::pair<unsigned int, unsigned int> closest_cells{0, 0};     ///< indices
   };
 
   /**
@@ -82,7 +82,7 @@ namespace rbc_ifem
    */
   Clearance
   measure_clearance(const std::vector<const Triangulation<2, 3> *> &surfaces,
-                    const MappingQ<2, 3> &                            mapping,
+                    const MappingQ<2, 3>                           &mapping,
                     const double capillary_radius);
 } // namespace rbc_ifem
 

@@ -3,12 +3,12 @@
 
 #include <rbc_ifem/geometry/cell_placement.h>
 
-#include <array>
-#include <string>
 #include <deal.II/grid/manifold.h>
 #include <deal.II/grid/manifold_lib.h>
 
+#include <array>
 #include <memory>
+#include <string>
 
 namespace rbc_ifem
 {
@@ -26,7 +26,8 @@ namespace rbc_ifem
    *
    * The shape is the image of the unit sphere under the smooth map
    *
-   *   F(s) = (R s_x, R s_y, 0.5 R s_z g(s_z)),  g(t) = a0 + a1 (1-t²) + a2 (1-t²)²,
+   *   F(s) = (R s_x, R s_y, 0.5 R s_z g(s_z)),  g(t) = a0 + a1 (1-t²) + a2
+   * (1-t²)²,
    *
    * because on the sphere ρ² = s_x² + s_y² = 1 - s_z². Meshing the sphere and
    * mapping it with F gives a surface mesh whose refinement converges to the
@@ -40,7 +41,8 @@ namespace rbc_ifem
     static constexpr Coefficients red_cell{{0.207, 2.002, -1.123}};
     static constexpr Coefficients sphere{{2., 0., 0.}};
 
-    explicit EvansFungShape(const double diameter, const Coefficients &coefficients = red_cell);
+    explicit EvansFungShape(const double        diameter,
+                            const Coefficients &coefficients = red_cell);
 
     /// The shape Cells/Shape names: "biconcave" (red_cell) or "sphere".
     static EvansFungShape
@@ -99,7 +101,8 @@ namespace rbc_ifem
      */
     template <typename Function>
     double
-    maximize_over_surface(const CellPlacement &placement, const Function &f) const;
+    maximize_over_surface(const CellPlacement &placement,
+                          const Function      &f) const;
 
     const double       R;
     const Coefficients a;
@@ -116,7 +119,7 @@ namespace rbc_ifem
   {
   public:
     EvansFungManifold(const EvansFungShape &shape,
-                      const CellPlacement & placement);
+                      const CellPlacement  &placement);
 
     std::unique_ptr<Manifold<2, 3>>
     clone() const override;
@@ -128,7 +131,7 @@ namespace rbc_ifem
 
     Point<3>
     get_new_point(const ArrayView<const Point<3>> &surrounding_points,
-                  const ArrayView<const double> &  weights) const override;
+                  const ArrayView<const double>   &weights) const override;
 
     Tensor<1, 3>
     get_tangent_vector(const Point<3> &x1, const Point<3> &x2) const override;
@@ -140,9 +143,9 @@ namespace rbc_ifem
     pull_back(const Point<3> &x) const;
 
   private:
-    const EvansFungShape      shape;
-    const CellPlacement       placement;
-    const Tensor<2, 3>        rotation;
+    const EvansFungShape          shape;
+    const CellPlacement           placement;
+    const Tensor<2, 3>            rotation;
     const SphericalManifold<2, 3> sphere;
   };
 } // namespace rbc_ifem

@@ -1,8 +1,8 @@
 #ifndef rbc_ifem_flow_domain_h
 #define rbc_ifem_flow_domain_h
 
-#include <rbc_ifem/geometry/cell_placement.h>
 #include <rbc_ifem/fluid/fluid_problem.h>
+#include <rbc_ifem/geometry/cell_placement.h>
 #include <rbc_ifem/parameters.h>
 
 #include <deal.II/grid/tria.h>
@@ -23,7 +23,7 @@ namespace rbc_ifem
    * is imposed.
    */
   void
-  create_shear_box_mesh(Triangulation<3> & triangulation,
+  create_shear_box_mesh(Triangulation<3>   &triangulation,
                         const Tensor<1, 3> &box,
                         const double        cell_size,
                         const unsigned int  n_global_refinements);
@@ -37,7 +37,8 @@ namespace rbc_ifem
   {
     enum class Kind
     {
-      capillary, ///< Poiseuille flow in the capillary segment, cells of subsection Layout
+      capillary, ///< Poiseuille flow in the capillary segment, cells of
+                 ///< subsection Layout
       shear_box  ///< simple shear in a box, one capsule at its centre
     };
 
@@ -46,7 +47,8 @@ namespace rbc_ifem
     std::vector<CellPlacement> placements;
     double                     shear_rate = 0.; ///< γ̇ of the shear box [1/s]
 
-    /// The capillary of subsection Geometry with the cells of subsection Layout.
+    /// The capillary of subsection Geometry with the cells of subsection
+    /// Layout.
     static FlowDomain
     capillary(const Parameters &parameters);
 
@@ -56,7 +58,8 @@ namespace rbc_ifem
 
     /// The fluid mesh before the band refinement around the cells.
     void
-    create_mesh(Triangulation<3> &triangulation, const Parameters &parameters) const;
+    create_mesh(Triangulation<3> &triangulation,
+                const Parameters &parameters) const;
 
     /// A velocity scale: the mean inflow speed ū, or γ̇ a in the box [µm/s].
     double

@@ -2,9 +2,9 @@
 #define rbc_ifem_ifem_simulation_h
 
 #include <rbc_ifem/coupling/cell_population.h>
-#include <rbc_ifem/ifem/flow_domain.h>
-#include <rbc_ifem/fluid/fluid_problem.h>
 #include <rbc_ifem/coupling/immersed_coupling.h>
+#include <rbc_ifem/fluid/fluid_problem.h>
+#include <rbc_ifem/ifem/flow_domain.h>
 #include <rbc_ifem/parameters.h>
 
 #include <deal.II/base/conditional_ostream.h>
@@ -47,13 +47,14 @@ namespace rbc_ifem
    */
   struct RunRecord
   {
-    unsigned int step         = 0;
-    double       time         = 0.;  ///< [s]
-    double       frame_offset = 0.;  ///< distance the frame has moved along x [µm]
-    std::vector<std::string> flow_rows, cell_rows, dm_rows;
-    std::vector<std::pair<double, std::string>>              fluid_files;
-    std::vector<std::vector<std::pair<double, std::string>>> cell_files; ///< per cell
-    std::vector<std::pair<double, std::string>>              diffusion_files, flux_files;
+    unsigned int step   = 0;
+    double       time   = 0.; ///< [s]
+    double frame_offset = 0.; ///< distance the frame has moved along x [µm]
+    std::vector<std::string>                    flow_rows, cell_rows, dm_rows;
+    std::vector<std::pair<double, std::string>> fluid_files;
+    std::vector<std::vector<std::pair<double, std::string>>>
+                                                cell_files; ///< per cell
+    std::vector<std::pair<double, std::string>> diffusion_files, flux_files;
     /// The shear box's capsule: time, Taylor deformation, inclination [rad].
     std::vector<std::array<double, 3>> shear_history;
 
@@ -61,8 +62,8 @@ namespace rbc_ifem
     void
     serialize(Archive &archive, const unsigned int)
     {
-      archive &step &time &frame_offset &flow_rows &cell_rows &dm_rows &fluid_files &cell_files
-        &diffusion_files &flux_files &shear_history;
+      archive &step &time &frame_offset &flow_rows &cell_rows &dm_rows
+        &fluid_files &cell_files &diffusion_files &flux_files &shear_history;
     }
   };
 
@@ -96,8 +97,8 @@ namespace rbc_ifem
    *
    * A run that diverges (non-finite forces or fields, a point moving more
    * than Maximum step displacement of the mesh size in one step, a cell
-   * leaving the fluid domain) stops with SolverFailure, after writing its tables
-   * and the last good membranes.
+   * leaving the fluid domain) stops with SolverFailure, after writing its
+   * tables and the last good membranes.
    */
   class IFEMSimulation
   {
@@ -153,8 +154,8 @@ namespace rbc_ifem
     CellPopulation                     cells;
     std::unique_ptr<ImmersedCoupling>  coupling;
     RunRecord                          record;
-    double                             mesh_size = 0.; ///< fluid h at the membranes [µm]
-    TrilinosWrappers::MPI::BlockVector load;           ///< the spread forces, owned
+    double mesh_size = 0.;                   ///< fluid h at the membranes [µm]
+    TrilinosWrappers::MPI::BlockVector load; ///< the spread forces, owned
   };
 } // namespace rbc_ifem
 

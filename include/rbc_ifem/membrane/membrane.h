@@ -62,12 +62,14 @@ namespace rbc_ifem
   class Membrane
   {
   public:
-    Membrane(const Triangulation<2, 3> &reference, const MembraneParameters &parameters);
+    Membrane(const Triangulation<2, 3> &reference,
+             const MembraneParameters  &parameters);
 
     const DoFHandler<2, 3> &
     get_dof_handler() const;
 
-    /// The reference positions X: every DoF's coordinate on the reference surface.
+    /// The reference positions X: every DoF's coordinate on the reference
+    /// surface.
     const Vector<double> &
     reference_positions() const;
 
@@ -116,10 +118,11 @@ namespace rbc_ifem
      * of @p dof_vectors (one entry per DoF, like the forces).
      */
     void
-    write_vtu(const Vector<double> &                                   x,
-              const std::string &                                      directory,
-              const std::string &                                      name,
-              const std::vector<std::pair<std::string, Vector<double>>> &dof_vectors = {}) const;
+    write_vtu(const Vector<double> &x,
+              const std::string    &directory,
+              const std::string    &name,
+              const std::vector<std::pair<std::string, Vector<double>>>
+                &dof_vectors = {}) const;
 
     /**
      * The surface x as a mesh with flat cells between its vertices (the
@@ -156,10 +159,10 @@ namespace rbc_ifem
 
     /// Per cell: its DoFs, and per local DoF the node (a cell-local base
     /// function) and the global node number.
-    std::vector<std::vector<types::global_dof_index>> cell_dofs;
-    std::vector<std::vector<unsigned int>>            cell_nodes;
-    unsigned int                                      n_nodes = 0;
-    std::vector<unsigned int>                         component_of_dof;
+    std::vector<std::vector<types::global_dof_index>>   cell_dofs;
+    std::vector<std::vector<unsigned int>>              cell_nodes;
+    unsigned int                                        n_nodes = 0;
+    std::vector<unsigned int>                           component_of_dof;
     std::vector<std::array<types::global_dof_index, 3>> node_dofs;
 
     /// Reference geometry per cell and quadrature point: G⁻¹ and sqrt(det G).

@@ -27,9 +27,9 @@ namespace rbc_ifem
    * forces they never enter the search directions.
    */
   EquilibriumReport
-  find_equilibrium(const Membrane &      membrane,
+  find_equilibrium(const Membrane       &membrane,
                    const Vector<double> &external_forces,
-                   Vector<double> &      x,
+                   Vector<double>       &x,
                    const double          tolerance,
                    const unsigned int    max_iterations);
 } // namespace rbc_ifem

@@ -12,11 +12,12 @@ namespace rbc_ifem
   {
     /// Towed through fluid at rest far away at speed U: F / (6π μ a U), "K".
     double towed_drag_factor;
-    /// Held fixed in Poiseuille flow of centre-line speed U_c: F / (6π μ a U_c).
+    /// Held fixed in Poiseuille flow of centre-line speed U_c: F / (6π μ a
+    /// U_c).
     double held_drag_factor;
     /// Freely suspended: its speed over the centre-line speed, U/U_c,
     /// which is held_drag_factor / towed_drag_factor (Stokes flow is linear).
-    double velocity_ratio;
+    double       velocity_ratio;
     unsigned int n_cells; ///< cells of the meridian mesh
     unsigned int n_dofs;  ///< velocity and pressure unknowns
   };

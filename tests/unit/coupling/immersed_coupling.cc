@@ -11,19 +11,19 @@
 //   interpolated velocity, follows the tracers of the exact flow;
 // - a point pushed out of the capillary is reported, not dropped.
 
+#include <rbc_ifem/coupling/immersed_coupling.h>
+#include <rbc_ifem/fluid/fluid_problem.h>
 #include <rbc_ifem/geometry/capillary_mesh.h>
 #include <rbc_ifem/geometry/cell_surface.h>
-#include <rbc_ifem/fluid/fluid_problem.h>
-#include <rbc_ifem/coupling/immersed_coupling.h>
 #include <rbc_ifem/membrane/membrane.h>
+
+#include "check.h"
 
 #include <deal.II/base/function.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <memory>
 #include <random>
-
-#include "check.h"
 
 using namespace rbc_ifem;
 
@@ -39,12 +39,15 @@ namespace
                       Triangulation<3>::none,
                       false,
                       parallel::shared::Triangulation<3>::partition_metis)
-      , timer(MPI_COMM_WORLD, std::cout, TimerOutput::never, TimerOutput::wall_times)
+      , timer(MPI_COMM_WORLD,
+              std::cout,
+              TimerOutput::never,
+              TimerOutput::wall_times)
     {
       create_fluid_mesh(triangulation, geometry, 1);
       FluidParameters f;
       f.linear_tolerance = 1e-10;
-      fluid = std::make_unique<FluidProblem>(
+      fluid              = std::make_unique<FluidProblem>(
         triangulation, f, FlowDrive::capillary(f, geometry), time_step, timer);
       fluid->setup();
     }
@@ -70,7 +73,10 @@ namespace
   membrane_nodes(const Point<3> &center)
   {
     Triangulation<2, 3> surface;
-    create_cell_surface(surface, EvansFungShape(7.5), CellPlacement{center, Tensor<1, 3>({1., 0., 0.})}, 2);
+    create_cell_surface(surface,
+                        EvansFungShape(7.5),
+                        CellPlacement{center, Tensor<1, 3>({1., 0., 0.})},
+                        2);
     const Membrane        membrane(surface, MembraneParameters());
     const Vector<double> &X = membrane.reference_positions();
     std::vector<Point<3>> nodes;
@@ -83,7 +89,8 @@ namespace
   class VelocityField : public Function<3>
   {
   public:
-    explicit VelocityField(const std::function<Tensor<1, 3>(const Point<3> &)> &u)
+    explicit VelocityField(
+      const std::function<Tensor<1, 3>(const Point<3> &)> &u)
       : Function<3>(4)
       , u(u)
     {}
@@ -100,7 +107,8 @@ namespace
 
   /// u interpolated into the fluid space (owned entries).
   TrilinosWrappers::MPI::BlockVector
-  interpolated_field(const Flow &flow, const std::function<Tensor<1, 3>(const Point<3> &)> &u)
+  interpolated_field(const Flow                                          &flow,
+                     const std::function<Tensor<1, 3>(const Point<3> &)> &u)
   {
     TrilinosWrappers::MPI::BlockVector owned = flow.vector(false);
     VectorTools::interpolate(flow.fluid->get_mapping(),
@@ -113,18 +121,22 @@ namespace
   void
   check_conservation_and_adjointness(Checker &check)
   {
-    Flow                  flow(1e-4);
-    ImmersedCoupling      coupling(flow.triangulation, flow.fluid->get_mapping(), flow.fluid->get_dof_handler());
-    const Point<3>        center(10., 0.4, -0.3);
-    const auto            x = membrane_nodes(center);
+    Flow             flow(1e-4);
+    ImmersedCoupling coupling(flow.triangulation,
+                              flow.fluid->get_mapping(),
+                              flow.fluid->get_dof_handler());
+    const Point<3>   center(10., 0.4, -0.3);
+    const auto       x = membrane_nodes(center);
     coupling.place(x);
-    const unsigned int own = coupling.get_particle_handler().n_locally_owned_particles();
+    const unsigned int own =
+      coupling.get_particle_handler().n_locally_owned_particles();
     std::cout << coupling.n_points() << " membrane points on "
               << Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) << " rank(s), "
               << Utilities::MPI::min(own, MPI_COMM_WORLD) << " to "
               << Utilities::MPI::max(own, MPI_COMM_WORLD) << " per rank\n";
     check.near("each point on exactly one rank: Σ points per rank / points",
-               Utilities::MPI::sum(own, MPI_COMM_WORLD) / double(coupling.n_points()),
+               Utilities::MPI::sum(own, MPI_COMM_WORLD) /
+                 double(coupling.n_points()),
                1.,
                0.);
 
@@ -149,16 +161,19 @@ namespace
     for (unsigned int d = 0; d < 3; ++d)
       {
         Tensor<1, 3> e;
-        e[d]               = 1.;
-        const auto translation = interpolated_field(flow, [&](const Point<3> &) { return e; });
-        const auto rotation    = interpolated_field(flow, [&](const Point<3> &p) {
+        e[d] = 1.;
+        const auto translation =
+          interpolated_field(flow, [&](const Point<3> &) { return e; });
+        const auto rotation = interpolated_field(flow, [&](const Point<3> &p) {
           return cross_product_3d(e, p - center);
         });
         const std::string axis(1, "xyz"[d]);
-        check.at_most("|⟨spread F, e_" + axis + "⟩ - Σ F_" + axis + "| / max |F_I|",
+        check.at_most("|⟨spread F, e_" + axis + "⟩ - Σ F_" + axis +
+                        "| / max |F_I|",
                       std::abs((load * translation) - total_force[d]) / largest,
                       1e-11);
-        check.at_most("|⟨spread F, e_" + axis + " × (x - c)⟩ - (Σ (x_I - c) × F_I)_" + axis +
+        check.at_most("|⟨spread F, e_" + axis +
+                        " × (x - c)⟩ - (Σ (x_I - c) × F_I)_" + axis +
                         "| / max |F_I|",
                       std::abs((load * rotation) - total_torque[d]) / largest,
                       1e-10);
@@ -172,7 +187,7 @@ namespace
     v.compress(VectorOperation::insert);
     flow.fluid->zero_constraints().distribute(v);
     TrilinosWrappers::MPI::BlockVector v_ghosted = flow.vector(true);
-    v_ghosted = v;
+    v_ghosted                                    = v;
     TrilinosWrappers::MPI::BlockVector condensed = flow.vector(false);
     coupling.spread(F, flow.fluid->zero_constraints(), condensed);
     const auto v_at_points = coupling.interpolate(v_ghosted);
@@ -182,7 +197,8 @@ namespace
         power += F[i] * v_at_points[i];
         scale += F[i].norm() * v_at_points[i].norm();
       }
-    std::cout << "  ⟨spread F, v⟩ = " << condensed * v << ", Σ F_I · v_I = " << power << '\n';
+    std::cout << "  ⟨spread F, v⟩ = " << condensed * v
+              << ", Σ F_I · v_I = " << power << '\n';
     check.at_most("|⟨spread F, v⟩ - Σ F_I · v_I| / Σ |F_I| |v_I| (adjointness)",
                   std::abs(condensed * v - power) / scale,
                   1e-12);
@@ -199,9 +215,11 @@ namespace
   {
     const double     dt = 1e-4;
     Flow             flow(dt);
-    ImmersedCoupling coupling(flow.triangulation, flow.fluid->get_mapping(), flow.fluid->get_dof_handler());
+    ImmersedCoupling coupling(flow.triangulation,
+                              flow.fluid->get_mapping(),
+                              flow.fluid->get_dof_handler());
     flow.fluid->advance();
-    auto x = membrane_nodes(Point<3>(6., 0.5, 0.));
+    auto       x  = membrane_nodes(Point<3>(6., 0.5, 0.));
     const auto x0 = x;
     coupling.place(x);
     const unsigned int n_steps = 40;
@@ -212,27 +230,34 @@ namespace
           x[i] += dt * v[i];
         coupling.place(x);
       }
-    const double R = geometry.capillary_radius, u_mean = FluidParameters().inlet_mean_speed;
-    double       worst = 0., travelled = 0.;
+    const double R      = geometry.capillary_radius,
+                 u_mean = FluidParameters().inlet_mean_speed;
+    double worst = 0., travelled = 0.;
     for (unsigned int i = 0; i < x.size(); ++i)
       {
-        const double r2 = x0[i][1] * x0[i][1] + x0[i][2] * x0[i][2];
+        const double r2    = x0[i][1] * x0[i][1] + x0[i][2] * x0[i][2];
         Point<3>     exact = x0[i];
         exact[0] += 2. * u_mean * (1. - r2 / (R * R)) * n_steps * dt;
         worst     = std::max(worst, (x[i] - exact).norm());
         travelled = std::max(travelled, (exact - x0[i]).norm());
       }
-    std::cout << "  tracers: largest path " << travelled << " µm, largest deviation from the exact path "
-              << worst << " µm\n";
-    // The level-1 velocity's own error (a few 1e-3 of ū near the wall) bounds it.
-    check.at_most("tracer membrane: max |x_I - x_I,exact| / largest path", worst / travelled, 1e-2);
+    std::cout << "  tracers: largest path " << travelled
+              << " µm, largest deviation from the exact path " << worst
+              << " µm\n";
+    // The level-1 velocity's own error (a few 1e-3 of ū near the wall) bounds
+    // it.
+    check.at_most("tracer membrane: max |x_I - x_I,exact| / largest path",
+                  worst / travelled,
+                  1e-2);
   }
 
   void
   check_lost_point(Checker &check)
   {
     Flow             flow(1e-4);
-    ImmersedCoupling coupling(flow.triangulation, flow.fluid->get_mapping(), flow.fluid->get_dof_handler());
+    ImmersedCoupling coupling(flow.triangulation,
+                              flow.fluid->get_mapping(),
+                              flow.fluid->get_dof_handler());
     auto             x = membrane_nodes(Point<3>(10., 0., 0.));
     coupling.place(x);
     coupling.place(x); // points on edges of curved cells must not get lost
@@ -258,7 +283,7 @@ main(int argc, char *argv[])
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
     std::cout.setstate(std::ios::failbit); // every rank checks, rank 0 reports
-  Checker                          check;
+  Checker check;
   check_conservation_and_adjointness(check);
   check_tracers(check);
   check_lost_point(check);

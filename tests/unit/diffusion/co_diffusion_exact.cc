@@ -11,8 +11,10 @@
 // Both also check conservation: the flow through the P_A boundary equals
 // the flow into the membrane, ∫ λ.
 
-#include <rbc_ifem/geometry/capillary_mesh.h>
 #include <rbc_ifem/diffusion/co_diffusion.h>
+#include <rbc_ifem/geometry/capillary_mesh.h>
+
+#include "check.h"
 
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_tools.h>
@@ -21,8 +23,6 @@
 #include <cmath>
 #include <vector>
 
-#include "check.h"
-
 using namespace rbc_ifem;
 
 namespace
@@ -30,22 +30,26 @@ namespace
   /// One solve: the flow into the membrane and out of the P_A boundary.
   struct Flows
   {
-    double membrane;
-    double boundary;
+    double        membrane;
+    double        boundary;
     unsigned long n_dofs;
     unsigned int  iterations;
   };
 
   Flows
-  solve(const parallel::shared::Triangulation<3> &mesh,
-        const Triangulation<2, 3> &               membrane,
-        const DiffusionParameters &               parameters,
+  solve(const parallel::shared::Triangulation<3>  &mesh,
+        const Triangulation<2, 3>                 &membrane,
+        const DiffusionParameters                 &parameters,
         const std::function<double(unsigned int)> &permeability,
         const types::boundary_id                   pressure_boundary)
   {
-    TimerOutput timer(MPI_COMM_WORLD, std::cout, TimerOutput::never, TimerOutput::wall_times);
+    TimerOutput          timer(MPI_COMM_WORLD,
+                      std::cout,
+                      TimerOutput::never,
+                      TimerOutput::wall_times);
     const MappingQ<2, 3> membrane_mapping(2);
-    CODiffusion          diffusion(parameters, permeability, pressure_boundary, MPI_COMM_WORLD, timer);
+    CODiffusion          diffusion(
+      parameters, permeability, pressure_boundary, MPI_COMM_WORLD, timer);
     diffusion.setup(mesh, {&membrane}, membrane_mapping);
     diffusion.assemble();
     diffusion.solve();
@@ -64,13 +68,18 @@ namespace
   /// The error falls on every level, at order >= 0.75 (the flux of a
   /// kink that cuts through cells converges at order 1), below @p finest.
   void
-  check_convergence(Checker &check, const std::string &name, const std::vector<double> &errors, const double finest)
+  check_convergence(Checker                   &check,
+                    const std::string         &name,
+                    const std::vector<double> &errors,
+                    const double               finest)
   {
     for (unsigned int l = 1; l < errors.size(); ++l)
       check.at_least(name + ": observed order, level " + std::to_string(l),
                      std::log2(errors[l - 1] / errors[l]),
                      0.75);
-    check.at_most(name + ": relative flow error on the finest mesh", errors.back(), finest);
+    check.at_most(name + ": relative flow error on the finest mesh",
+                  errors.back(),
+                  finest);
   }
 
   void
@@ -80,17 +89,22 @@ namespace
     const GeometryParameters geometry; // R = 5, wall 1, gas 5, L = 20 µm
     const double             r1 = 2.5;
     DiffusionParameters      parameters;
-    parameters.linear_tolerance = 1e-12; // the boundary flow needs it (doc/diffusion.md)
+    parameters.linear_tolerance =
+      1e-12; // the boundary flow needs it (doc/diffusion.md)
     parameters.wall_diffusivity *= 0.5; // three distinct layers
-    const auto permeability = [&](const unsigned int id) { return parameters.permeability(id); };
+    const auto permeability = [&](const unsigned int id) {
+      return parameters.permeability(id);
+    };
 
-    const double R = geometry.capillary_radius, Rw = R + geometry.wall_thickness,
+    const double R  = geometry.capillary_radius,
+                 Rw = R + geometry.wall_thickness,
                  Rg = Rw + geometry.gas_layer_thickness;
-    const double resistance = std::log(R / r1) / permeability(Material::plasma) +
-                              std::log(Rw / R) / permeability(Material::vessel_wall) +
-                              std::log(Rg / Rw) / permeability(Material::gas);
-    const double exact = 2. * numbers::PI * parameters.alveolar_pressure / resistance *
-                         geometry.capillary_length;
+    const double resistance =
+      std::log(R / r1) / permeability(Material::plasma) +
+      std::log(Rw / R) / permeability(Material::vessel_wall) +
+      std::log(Rg / Rw) / permeability(Material::gas);
+    const double exact = 2. * numbers::PI * parameters.alveolar_pressure /
+                         resistance * geometry.capillary_length;
     std::cout << "  exact flow " << exact << " µm³/s\n";
 
     std::vector<double> errors;
@@ -99,7 +113,8 @@ namespace
         // The immersed tube: the lateral surface of a cylinder along x.
         Triangulation<3> solid;
         GridGenerator::cylinder(solid, r1, 0.5 * geometry.capillary_length);
-        GridTools::shift(Tensor<1, 3>({0.5 * geometry.capillary_length, 0., 0.}), solid);
+        GridTools::shift(
+          Tensor<1, 3>({0.5 * geometry.capillary_length, 0., 0.}), solid);
         Triangulation<2, 3> tube;
         GridGenerator::extract_boundary_mesh(solid, tube, {0});
         tube.set_all_manifold_ids(0);
@@ -109,14 +124,21 @@ namespace
         parallel::shared::Triangulation<3> mesh(MPI_COMM_WORLD);
         create_diffusion_mesh(mesh, geometry, level + 1);
 
-        const Flows flows = solve(mesh, tube, parameters, permeability, DiffusionBoundary::alveolar_surface);
+        const Flows flows = solve(mesh,
+                                  tube,
+                                  parameters,
+                                  permeability,
+                                  DiffusionBoundary::alveolar_surface);
         errors.push_back(std::abs(flows.membrane - exact) / exact);
         std::cout << "  level " << level << ": " << flows.n_dofs << " DoFs, "
-                  << flows.iterations << " FGMRES iterations, flow " << flows.membrane
-                  << ", relative error " << errors.back() << ", boundary flow "
-                  << flows.boundary << '\n';
-        check.near("cylinders: boundary flow / membrane flow, level " + std::to_string(level),
-                   flows.boundary / flows.membrane, 1., 1e-6);
+                  << flows.iterations << " FGMRES iterations, flow "
+                  << flows.membrane << ", relative error " << errors.back()
+                  << ", boundary flow " << flows.boundary << '\n';
+        check.near("cylinders: boundary flow / membrane flow, level " +
+                     std::to_string(level),
+                   flows.boundary / flows.membrane,
+                   1.,
+                   1e-6);
       }
     check_convergence(check, "cylinders", errors, 0.025);
   }
@@ -130,7 +152,8 @@ namespace
     parameters.linear_tolerance = 1e-12;
     const double alpha_D        = parameters.permeability(Material::plasma);
     const auto   permeability   = [&](const unsigned int) { return alpha_D; };
-    const double exact = 4. * numbers::PI * alpha_D * parameters.alveolar_pressure * a * b / (b - a);
+    const double exact          = 4. * numbers::PI * alpha_D *
+                         parameters.alveolar_pressure * a * b / (b - a);
     std::cout << "  exact flow " << exact << " µm³/s\n";
 
     std::vector<double> errors;
@@ -147,11 +170,14 @@ namespace
         const Flows flows = solve(ball, sphere, parameters, permeability, 0);
         errors.push_back(std::abs(flows.membrane - exact) / exact);
         std::cout << "  level " << level << ": " << flows.n_dofs << " DoFs, "
-                  << flows.iterations << " FGMRES iterations, flow " << flows.membrane
-                  << ", relative error " << errors.back() << ", boundary flow "
-                  << flows.boundary << '\n';
-        check.near("sphere: boundary flow / membrane flow, level " + std::to_string(level),
-                   flows.boundary / flows.membrane, 1., 1e-6);
+                  << flows.iterations << " FGMRES iterations, flow "
+                  << flows.membrane << ", relative error " << errors.back()
+                  << ", boundary flow " << flows.boundary << '\n';
+        check.near("sphere: boundary flow / membrane flow, level " +
+                     std::to_string(level),
+                   flows.boundary / flows.membrane,
+                   1.,
+                   1e-6);
       }
     check_convergence(check, "sphere", errors, 0.02);
   }

@@ -10,11 +10,11 @@
 
 #include <rbc_ifem/experiments/diffusion_experiment.h>
 
+#include "check.h"
+
 #include <deal.II/base/mpi.h>
 
 #include <vector>
-
-#include "check.h"
 
 using namespace rbc_ifem;
 
@@ -25,9 +25,9 @@ namespace
   small_run()
   {
     Parameters p;
-    p.cells.surface_refinements          = 2;
-    p.mesh.diffusion_global_refinements  = 1;
-    p.mesh.diffusion_band_refinements    = 1;
+    p.cells.surface_refinements         = 2;
+    p.mesh.diffusion_global_refinements = 1;
+    p.mesh.diffusion_band_refinements   = 1;
     return p;
   }
 
@@ -37,11 +37,19 @@ namespace
     LayoutParameters layout = p.layout;
     layout.kind             = kind;
     layout.n_cells          = n_cells;
-    TimerOutput timer(MPI_COMM_WORLD, std::cout, TimerOutput::never, TimerOutput::wall_times);
-    const LayoutUptake uptake = solve_layout(
-      p, layout, p.cells.surface_refinements, p.mesh.diffusion_band_refinements, MPI_COMM_WORLD, timer);
-    std::cout << "  " << kind << ", " << n_cells << " cells: DM " << uptake.dm_total
-              << " µm³/(s Torr), per cell " << uptake.dm_total / n_cells << '\n';
+    TimerOutput        timer(MPI_COMM_WORLD,
+                      std::cout,
+                      TimerOutput::never,
+                      TimerOutput::wall_times);
+    const LayoutUptake uptake = solve_layout(p,
+                                             layout,
+                                             p.cells.surface_refinements,
+                                             p.mesh.diffusion_band_refinements,
+                                             MPI_COMM_WORLD,
+                                             timer);
+    std::cout << "  " << kind << ", " << n_cells << " cells: DM "
+              << uptake.dm_total << " µm³/(s Torr), per cell "
+              << uptake.dm_total / n_cells << '\n';
     return uptake.dm_total;
   }
 } // namespace
@@ -59,7 +67,8 @@ main(int argc, char *argv[])
     uniform.push_back(dm(p, "uniform", n));
   for (unsigned int n = 2; n <= 7; ++n)
     {
-      const std::string N = " from N = " + std::to_string(n - 1) + " to " + std::to_string(n);
+      const std::string N =
+        " from N = " + std::to_string(n - 1) + " to " + std::to_string(n);
       check.at_least("DM total grows" + N + ": relative increase",
                      uniform[n] / uniform[n - 1] - 1.,
                      0.01);
@@ -70,7 +79,8 @@ main(int argc, char *argv[])
 
   std::cout << "Clustered layouts\n";
   for (unsigned int n = 2; n <= 5; ++n)
-    check.at_least("clustered below uniform, N = " + std::to_string(n) + ": 1 - clustered/uniform",
+    check.at_least("clustered below uniform, N = " + std::to_string(n) +
+                     ": 1 - clustered/uniform",
                    1. - dm(p, "clustered", n) / uniform[n],
                    0.02);
 

@@ -8,22 +8,22 @@
 // `test_fluid_poiseuille RE DT` runs only the Newton study, at Reynolds
 // number RE and time step DT.
 
-#include <rbc_ifem/geometry/capillary_mesh.h>
 #include <rbc_ifem/fluid/fluid_problem.h>
+#include <rbc_ifem/geometry/capillary_mesh.h>
+
+#include "check.h"
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <memory>
 
-#include "check.h"
-
 using namespace rbc_ifem;
 
 namespace
 {
   const GeometryParameters geometry; // R = 5 µm, L = 20 µm
-  const double             R = geometry.capillary_radius, L = geometry.capillary_length;
+  const double R = geometry.capillary_radius, L = geometry.capillary_length;
 
   /// Plasma, Stokes, ū = 500 µm/s, solved tightly.
   FluidParameters
@@ -37,9 +37,14 @@ namespace
   /// A fluid mesh and a FluidProblem on it, set up and ready to step.
   struct Flow
   {
-    Flow(const FluidParameters &f, const unsigned int level, const double time_step)
+    Flow(const FluidParameters &f,
+         const unsigned int     level,
+         const double           time_step)
       : triangulation(MPI_COMM_WORLD)
-      , timer(MPI_COMM_WORLD, std::cout, TimerOutput::never, TimerOutput::wall_times)
+      , timer(MPI_COMM_WORLD,
+              std::cout,
+              TimerOutput::never,
+              TimerOutput::wall_times)
     {
       create_fluid_mesh(triangulation, geometry, level);
       fluid = std::make_unique<FluidProblem>(
@@ -64,7 +69,7 @@ namespace
   velocity_error(const Flow &flow, const PoiseuilleFlow &exact, const double u)
   {
     const ComponentSelectFunction<3> velocity_only(std::make_pair(0u, 3u), 4);
-    Vector<float>                    cellwise(flow.triangulation.n_active_cells());
+    Vector<float> cellwise(flow.triangulation.n_active_cells());
     VectorTools::integrate_difference(flow.fluid->get_mapping(),
                                       flow.fluid->get_dof_handler(),
                                       flow.fluid->solution(),
@@ -73,15 +78,20 @@ namespace
                                       QGauss<3>(5),
                                       VectorTools::L2_norm,
                                       &velocity_only);
-    return VectorTools::compute_global_error(flow.triangulation, cellwise, VectorTools::L2_norm) /
+    return VectorTools::compute_global_error(flow.triangulation,
+                                             cellwise,
+                                             VectorTools::L2_norm) /
            poiseuille_norm(u);
   }
 
   /// max |a - b| over one block (0: velocity, 1: pressure) of two solutions.
   double
-  largest_difference(const FluidProblem &a, const FluidProblem &b, const unsigned int block)
+  largest_difference(const FluidProblem &a,
+                     const FluidProblem &b,
+                     const unsigned int  block)
   {
-    TrilinosWrappers::MPI::BlockVector difference(a.owned_partitioning(), MPI_COMM_WORLD);
+    TrilinosWrappers::MPI::BlockVector difference(a.owned_partitioning(),
+                                                  MPI_COMM_WORLD);
     difference = a.solution();
     difference -= b.solution();
     return difference.block(block).linfty_norm();
@@ -106,32 +116,39 @@ namespace
     const double          exact_drop = 8. * f.viscosity * u * L / (R * R);
     const PoiseuilleFlow  exact(u, 0., f.viscosity, geometry);
 
-    std::cout << "Hagen-Poiseuille, Stokes: relative errors (observed order)\n"
-              << "  level    DoFs   velocity L2        pressure drop  flow rate  ‖∇·v‖/‖v‖\n";
+    std::cout
+      << "Hagen-Poiseuille, Stokes: relative errors (observed order)\n"
+      << "  level    DoFs   velocity L2        pressure drop  flow rate  ‖∇·v‖/‖v‖\n";
     double coarse_velocity = 0., coarse_divergence = 0.;
     for (unsigned int level = 0; level <= 2; ++level)
       {
         Flow flow(f, level, 1.);
         flow.fluid->advance();
-        const FlowMeasures m     = flow.fluid->measure();
-        const double       e_v   = velocity_error(flow, exact, u);
-        const double       e_p   = std::abs(m.pressure_drop - exact_drop) / exact_drop;
-        const double       e_q   = std::abs(m.flow_rate - exact_flow) / exact_flow;
-        const double       e_div = m.divergence_l2 / poiseuille_norm(u);
+        const FlowMeasures m   = flow.fluid->measure();
+        const double       e_v = velocity_error(flow, exact, u);
+        const double e_p = std::abs(m.pressure_drop - exact_drop) / exact_drop;
+        const double e_q = std::abs(m.flow_rate - exact_flow) / exact_flow;
+        const double e_div = m.divergence_l2 / poiseuille_norm(u);
         std::cout << std::setw(7) << level << std::setw(8)
                   << flow.fluid->get_dof_handler().n_dofs() << std::scientific
                   << std::setprecision(2) << std::setw(12) << e_v << " ("
-                  << (level == 0 ? "   -" : order(coarse_velocity, e_v)) << ')' << std::setw(12)
-                  << e_p << std::setw(14) << e_q << std::setw(11) << e_div << " ("
-                  << (level == 0 ? "   -" : order(coarse_divergence, e_div)) << ")\n";
+                  << (level == 0 ? "   -" : order(coarse_velocity, e_v)) << ')'
+                  << std::setw(12) << e_p << std::setw(14) << e_q
+                  << std::setw(11) << e_div << " ("
+                  << (level == 0 ? "   -" : order(coarse_divergence, e_div))
+                  << ")\n";
         if (level == 2)
           {
             check.at_most("velocity L2 error, level 2", e_v, 2e-4);
-            check.at_least("velocity L2 order, levels 1-2", std::log2(coarse_velocity / e_v), 2.7);
+            check.at_least("velocity L2 order, levels 1-2",
+                           std::log2(coarse_velocity / e_v),
+                           2.7);
             check.at_most("pressure drop error, level 2", e_p, 1e-4);
             check.at_most("flow rate error, level 2", e_q, 1e-4);
             check.at_most("‖∇·v‖ / ‖v‖, level 2", e_div, 2e-5);
-            check.at_least("‖∇·v‖ order, levels 1-2", std::log2(coarse_divergence / e_div), 2.);
+            check.at_least("‖∇·v‖ order, levels 1-2",
+                           std::log2(coarse_divergence / e_div),
+                           2.);
           }
         coarse_velocity   = e_v;
         coarse_divergence = e_div;
@@ -151,19 +168,25 @@ namespace
     lab.fluid->advance();
     moving.fluid->advance();
 
-    TrilinosWrappers::MPI::BlockVector shift(moving.fluid->owned_partitioning(), MPI_COMM_WORLD);
+    TrilinosWrappers::MPI::BlockVector shift(moving.fluid->owned_partitioning(),
+                                             MPI_COMM_WORLD);
     VectorTools::interpolate(moving.fluid->get_mapping(),
                              moving.fluid->get_dof_handler(),
-                             Functions::ConstantFunction<3>(std::vector<double>{U, 0., 0., 0.}),
+                             Functions::ConstantFunction<3>(
+                               std::vector<double>{U, 0., 0., 0.}),
                              shift);
-    TrilinosWrappers::MPI::BlockVector difference(moving.fluid->owned_partitioning(),
-                                                  MPI_COMM_WORLD);
+    TrilinosWrappers::MPI::BlockVector difference(
+      moving.fluid->owned_partitioning(), MPI_COMM_WORLD);
     difference = moving.fluid->solution();
     difference += shift;
     difference -= lab.fluid->solution();
     const double drop = 8. * f.viscosity * u * L / (R * R);
-    check.at_most("max |v_frame + U - v_lab| [µm/s]", difference.block(0).linfty_norm(), 1e-6 * u);
-    check.at_most("max |p_frame - p_lab| [pN/µm²]", difference.block(1).linfty_norm(), 1e-5 * drop);
+    check.at_most("max |v_frame + U - v_lab| [µm/s]",
+                  difference.block(0).linfty_norm(),
+                  1e-6 * u);
+    check.at_most("max |p_frame - p_lab| [pN/µm²]",
+                  difference.block(1).linfty_norm(),
+                  1e-5 * drop);
     // U times the discrete outlet area, which differs from πR² by 7.8e-4 on
     // this mesh (test capillary_mesh).
     check.near("flow rate in the frame [µm³/s]",
@@ -179,14 +202,15 @@ namespace
   body_force_replaces_pressure_gradient(Checker &check)
   {
     const FluidParameters f = plasma();
-    const double          u = f.inlet_mean_speed, G = 8. * f.viscosity * u / (R * R);
-    Flow                  flow(f, 1, 1.);
+    const double u = f.inlet_mean_speed, G = 8. * f.viscosity * u / (R * R);
+    Flow         flow(f, 1, 1.);
 
     // The load vector ∫ G e_x · φ_J, assembled as the coupling will do it.
-    const FluidProblem &fluid = *flow.fluid;
-    TrilinosWrappers::MPI::BlockVector load(fluid.owned_partitioning(), MPI_COMM_WORLD);
-    const QGauss<3>    quadrature(3);
-    FEValues<3>        fe_values(fluid.get_mapping(),
+    const FluidProblem                &fluid = *flow.fluid;
+    TrilinosWrappers::MPI::BlockVector load(fluid.owned_partitioning(),
+                                            MPI_COMM_WORLD);
+    const QGauss<3>                    quadrature(3);
+    FEValues<3>                        fe_values(fluid.get_mapping(),
                           fluid.get_dof_handler().get_fe(),
                           quadrature,
                           update_values | update_JxW_values);
@@ -200,9 +224,12 @@ namespace
           cell_load = 0.;
           for (const unsigned int q : fe_values.quadrature_point_indices())
             for (unsigned int i = 0; i < n; ++i)
-              cell_load(i) += G * fe_values.shape_value_component(i, q, 0) * fe_values.JxW(q);
+              cell_load(i) +=
+                G * fe_values.shape_value_component(i, q, 0) * fe_values.JxW(q);
           cell->get_dof_indices(dof_indices);
-          fluid.zero_constraints().distribute_local_to_global(cell_load, dof_indices, load);
+          fluid.zero_constraints().distribute_local_to_global(cell_load,
+                                                              dof_indices,
+                                                              load);
         }
     load.compress(VectorOperation::add);
 
@@ -213,7 +240,9 @@ namespace
                   std::abs(m.pressure_drop) / (G * L),
                   2e-3);
     check.at_most("with body force: velocity L2 error (level 1)",
-                  velocity_error(flow, PoiseuilleFlow(u, 0., f.viscosity, geometry), u),
+                  velocity_error(flow,
+                                 PoiseuilleFlow(u, 0., f.viscosity, geometry),
+                                 u),
                   2e-3);
   }
 
@@ -228,7 +257,8 @@ namespace
     built.fluid->advance();
     changed.fluid->advance();
     check.at_most("set_time_step: max velocity difference / ū",
-                  largest_difference(*changed.fluid, *built.fluid, 0) / f.inlet_mean_speed,
+                  largest_difference(*changed.fluid, *built.fluid, 0) /
+                    f.inlet_mean_speed,
                   1e-8);
   }
 
@@ -240,16 +270,18 @@ namespace
     const FluidParameters stokes_parameters = plasma();
     FluidParameters       ns_parameters     = stokes_parameters;
     ns_parameters.model                     = "Navier-Stokes";
-    Flow stokes(stokes_parameters, 1, 1e-6), navier_stokes(ns_parameters, 1, 1e-6);
+    Flow stokes(stokes_parameters, 1, 1e-6),
+      navier_stokes(ns_parameters, 1, 1e-6);
     for (unsigned int step = 0; step < 2; ++step)
       {
         stokes.fluid->advance();
         navier_stokes.fluid->advance();
       }
-    check.at_most("Navier-Stokes vs Stokes at Re = 4e-3: max velocity difference / ū",
-                  largest_difference(*navier_stokes.fluid, *stokes.fluid, 0) /
-                    stokes_parameters.inlet_mean_speed,
-                  1e-4);
+    check.at_most(
+      "Navier-Stokes vs Stokes at Re = 4e-3: max velocity difference / ū",
+      largest_difference(*navier_stokes.fluid, *stokes.fluid, 0) /
+        stokes_parameters.inlet_mean_speed,
+      1e-4);
   }
 
   /// One step of @p dt from rest at Reynolds number @p reynolds, where
@@ -258,17 +290,19 @@ namespace
   void
   newton_convergence(Checker &check, const double reynolds, const double dt)
   {
-    FluidParameters f       = plasma();
-    f.model                 = "Navier-Stokes";
-    f.density               = reynolds * f.viscosity / (f.inlet_mean_speed * 2. * R);
-    f.newton_tolerance      = 1e-9;
+    FluidParameters f  = plasma();
+    f.model            = "Navier-Stokes";
+    f.density          = reynolds * f.viscosity / (f.inlet_mean_speed * 2. * R);
+    f.newton_tolerance = 1e-9;
     f.max_linear_iterations = 1000;
     Flow             flow(f, 1, dt);
     const StepReport report = flow.fluid->advance();
 
-    std::cout << "Newton at Re = " << reynolds << ", Δt = " << dt << " s, relative residuals:";
+    std::cout << "Newton at Re = " << reynolds << ", Δt = " << dt
+              << " s, relative residuals:";
     for (const double r : report.residuals)
-      std::cout << ' ' << std::scientific << std::setprecision(2) << r / report.residuals[0];
+      std::cout << ' ' << std::scientific << std::setprecision(2)
+                << r / report.residuals[0];
     std::cout << '\n';
     double best_order = 0.;
     for (unsigned int k = 1; k + 1 < report.residuals.size(); ++k)
@@ -278,7 +312,9 @@ namespace
         if (r_k < 1e-1 && r_k1 > 1e-10)
           best_order = std::max(best_order, std::log(r_k1) / std::log(r_k));
       }
-    check.at_least("Newton: observed order log r_{k+1} / log r_k", best_order, 1.8);
+    check.at_least("Newton: observed order log r_{k+1} / log r_k",
+                   best_order,
+                   1.8);
     check.at_most("Newton iterations", report.newton_iterations, 8);
   }
 } // namespace

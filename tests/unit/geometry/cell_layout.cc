@@ -4,13 +4,13 @@
 // uniform spacing and clustered gaps are exact; random layouts are
 // reproducible; the hematocrit is total cell volume / lumen volume.
 
+#include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/geometry/cell_layout.h>
 #include <rbc_ifem/geometry/cell_surface.h>
-#include <rbc_ifem/base/input_error.h>
-
-#include <memory>
 
 #include "check.h"
+
+#include <memory>
 
 using namespace rbc_ifem;
 
@@ -18,10 +18,10 @@ namespace
 {
   /// Build the membranes of a layout and measure their clearance.
   Clearance
-  clearance_of(const CellLayout &layout,
-               const CellParameters &cells,
+  clearance_of(const CellLayout         &layout,
+               const CellParameters     &cells,
                const GeometryParameters &geometry,
-               const unsigned int refinements)
+               const unsigned int        refinements)
   {
     const EvansFungShape                              shape(cells.diameter);
     std::vector<std::unique_ptr<Triangulation<2, 3>>> surfaces;
@@ -32,7 +32,9 @@ namespace
         create_cell_surface(*surfaces.back(), shape, placement, refinements);
         pointers.push_back(surfaces.back().get());
       }
-    return measure_clearance(pointers, MappingQ<2, 3>(2), geometry.capillary_radius);
+    return measure_clearance(pointers,
+                             MappingQ<2, 3>(2),
+                             geometry.capillary_radius);
   }
 
   /// The largest |x_i - expected(i)| over the cells' centres.
@@ -42,7 +44,9 @@ namespace
   {
     double worst = 0.;
     for (unsigned int i = 0; i < layout.placements().size(); ++i)
-      worst = std::max(worst, std::abs(layout.placements()[i].center[0] - expected(i)));
+      worst =
+        std::max(worst,
+                 std::abs(layout.placements()[i].center[0] - expected(i)));
     return worst;
   }
 
@@ -68,7 +72,8 @@ main()
   const double             gap = layout.minimum_gap;
 
   // The cell length along the axis is twice the profile's largest half
-  // thickness; with it, floor(L / (length + gap)) cells fit: 7, as in the paper.
+  // thickness; with it, floor(L / (length + gap)) cells fit: 7, as in the
+  // paper.
   const CellLayout reference(layout, geometry, cells);
   check.near("cell length along the axis [µm]",
              reference.cell_length(),
@@ -81,12 +86,13 @@ main()
   // < 1e-3 µm at 2 refinements) and stay off the wall.
   for (const std::string kind : {"uniform", "random", "clustered"})
     {
-      layout.kind         = kind;
-      double worst_gap    = std::numeric_limits<double>::infinity();
-      double worst_wall   = std::numeric_limits<double>::infinity();
-      unsigned int n_runs = 0;
+      layout.kind             = kind;
+      double       worst_gap  = std::numeric_limits<double>::infinity();
+      double       worst_wall = std::numeric_limits<double>::infinity();
+      unsigned int n_runs     = 0;
       for (unsigned int n = 1; n <= reference.max_cells(); ++n)
-        for (unsigned int seed = 1; seed <= (kind == "random" ? 20u : 1u); ++seed)
+        for (unsigned int seed = 1; seed <= (kind == "random" ? 20u : 1u);
+             ++seed)
           {
             layout.n_cells = n;
             layout.seed    = seed;
@@ -96,13 +102,16 @@ main()
             worst_wall         = std::min(worst_wall, c.min_wall_gap);
             ++n_runs;
             for (const CellPlacement &p : cell_layout.placements())
-              if (p.center[0] - 0.5 * cell_layout.cell_length() < 0.5 * gap - 1e-12 ||
+              if (p.center[0] - 0.5 * cell_layout.cell_length() <
+                    0.5 * gap - 1e-12 ||
                   p.center[0] + 0.5 * cell_layout.cell_length() >
                     geometry.capillary_length - 0.5 * gap + 1e-12)
                 check.holds(kind + ": a cell leaves the segment", false);
           }
       std::cout << kind << ": " << n_runs << " layouts\n";
-      check.at_least(kind + ": smallest membrane gap over all layouts [µm]", worst_gap, gap - 1e-3);
+      check.at_least(kind + ": smallest membrane gap over all layouts [µm]",
+                     worst_gap,
+                     gap - 1e-3);
       check.near(kind + ": smallest wall clearance [µm]",
                  worst_wall,
                  geometry.capillary_radius - cells.diameter / 2.,
@@ -114,10 +123,12 @@ main()
   layout.n_cells = 6;
   {
     const CellLayout uniform(layout, geometry, cells);
-    const double     worst = largest_deviation(uniform, [](const unsigned int i) {
+    const double worst = largest_deviation(uniform, [](const unsigned int i) {
       return (i + 0.5) * 20. / 6.;
     });
-    check.at_most("uniform: largest deviation from (i+1/2) L/N [µm]", worst, 1e-12);
+    check.at_most("uniform: largest deviation from (i+1/2) L/N [µm]",
+                  worst,
+                  1e-12);
   }
 
   // Clustered: centres one cell length + gap apart, and the measured gap
@@ -128,10 +139,13 @@ main()
   {
     const CellLayout clustered(layout, geometry, cells);
     const double     first = clustered.placements()[0].center[0];
-    const double     worst = largest_deviation(clustered, [&](const unsigned int i) {
-      return first + i * (clustered.cell_length() + gap);
-    });
-    check.at_most("clustered: centres - (first + i (length + gap)) [µm]", worst, 1e-12);
+    const double     worst =
+      largest_deviation(clustered, [&](const unsigned int i) {
+        return first + i * (clustered.cell_length() + gap);
+      });
+    check.at_most("clustered: centres - (first + i (length + gap)) [µm]",
+                  worst,
+                  1e-12);
     const double middle = 0.5 * (clustered.placements()[0].center[0] +
                                  clustered.placements()[4].center[0]);
     check.near("clustered: group centre [µm]", middle, 10., 1e-12);
@@ -149,11 +163,12 @@ main()
     const CellLayout a(layout, geometry, cells), b(layout, geometry, cells);
     layout.seed = 8;
     const CellLayout c(layout, geometry, cells);
-    bool same = true, different = false;
+    bool             same = true, different = false;
     for (unsigned int i = 0; i < 4; ++i)
       {
-        same      = same && a.placements()[i].center == b.placements()[i].center;
-        different = different || a.placements()[i].center != c.placements()[i].center;
+        same = same && a.placements()[i].center == b.placements()[i].center;
+        different =
+          different || a.placements()[i].center != c.placements()[i].center;
       }
     check.holds("random: seed 7 twice gives the same layout", same);
     check.holds("random: seeds 7 and 8 give different layouts", different);
@@ -167,7 +182,10 @@ main()
     layout.kind           = "clustered";
     layout.n_cells        = 2;
     const CellLayout standing(layout, geometry, tilted);
-    check.near("axis along z: cell length = diameter [µm]", standing.cell_length(), 7.5, 1e-9);
+    check.near("axis along z: cell length = diameter [µm]",
+               standing.cell_length(),
+               7.5,
+               1e-9);
     check.at_least("axis along z: measured membrane gap [µm]",
                    clearance_of(standing, tilted, geometry, 3).min_cell_gap,
                    gap - 1e-3);
@@ -177,8 +195,8 @@ main()
   {
     layout.kind    = "uniform";
     layout.n_cells = 7;
-    const CellLayout          full(layout, geometry, cells);
-    const double              v = 82.95803163; // exact, test evans_fung_surface
+    const CellLayout full(layout, geometry, cells);
+    const double     v = 82.95803163; // exact, test evans_fung_surface
     check.near("hematocrit of 7 cells",
                full.hematocrit(std::vector<double>(7, v)),
                7. * v / (numbers::PI * 25. * 20.),

@@ -18,6 +18,8 @@
 #include <rbc_ifem/membrane/membrane.h>
 #include <rbc_ifem/membrane/membrane_equilibrium.h>
 
+#include "check.h"
+
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/manifold_lib.h>
 
@@ -25,15 +27,16 @@
 #include <functional>
 #include <random>
 
-#include "check.h"
-
 using namespace rbc_ifem;
 
 namespace
 {
   /// The default moduli with only the terms named switched on.
   MembraneParameters
-  with_terms(const std::string &law, const bool bending, const bool area, const bool volume)
+  with_terms(const std::string &law,
+             const bool         bending,
+             const bool         area,
+             const bool         volume)
   {
     MembraneParameters p;
     p.law             = law;
@@ -45,7 +48,9 @@ namespace
   }
 
   Vector<double>
-  random_vector(const unsigned int n, const double amplitude, std::mt19937 &random)
+  random_vector(const unsigned int n,
+                const double       amplitude,
+                std::mt19937      &random)
   {
     std::uniform_real_distribution<double> uniform(-amplitude, amplitude);
     Vector<double>                         v(n);
@@ -69,7 +74,9 @@ namespace
    * -(F(all) - F(all but the term))·v, at a perturbed shape.
    */
   void
-  check_gradient(Checker &check, const std::string &law, const unsigned int degree)
+  check_gradient(Checker           &check,
+                 const std::string &law,
+                 const unsigned int degree)
   {
     Triangulation<2, 3> surface;
     create_cell(surface, 2);
@@ -82,7 +89,7 @@ namespace
       {"volume", {{false, false, true}}}};
     MembraneParameters base = with_terms(law, false, false, false);
     base.degree             = degree;
-    const Membrane elastic_only(surface, base);
+    const Membrane       elastic_only(surface, base);
     const Vector<double> x =
       Vector<double>(elastic_only.reference_positions()) +=
       random_vector(elastic_only.reference_positions().size(), 0.2, random);
@@ -113,9 +120,11 @@ namespace
             plus.add(h, v);
             minus.add(-h, v);
             const double difference =
-              (part(membrane.energy(plus)) - part(membrane.energy(minus))) / (2. * h);
+              (part(membrane.energy(plus)) - part(membrane.energy(minus))) /
+              (2. * h);
             const double exact = -(force * v);
-            worst = std::max(worst, std::abs(difference - exact) / std::abs(exact));
+            worst =
+              std::max(worst, std::abs(difference - exact) / std::abs(exact));
           }
         check.at_most(law + ", Q" + std::to_string(degree) + ", " + name +
                         ": |dE/dx·v (finite difference) + F·v| / |F·v|",
@@ -137,13 +146,13 @@ namespace
     Vector<double> x(membrane.reference_positions());
     x += random_vector(x.size(), 0.2, random);
 
-    Vector<double>       force(x.size());
-    const double         energy = membrane.energy_and_forces(x, force).total();
-    Tensor<1, 3>         resultant, torque;
-    double               largest_force = 0., largest_moment = 0.;
-    const double         angle   = 0.7;
-    const Tensor<1, 3>   shift({1.5, -2., 0.3});
-    Vector<double>       moved(x.size());
+    Vector<double>     force(x.size());
+    const double       energy = membrane.energy_and_forces(x, force).total();
+    Tensor<1, 3>       resultant, torque;
+    double             largest_force = 0., largest_moment = 0.;
+    const double       angle = 0.7;
+    const Tensor<1, 3> shift({1.5, -2., 0.3});
+    Vector<double>     moved(x.size());
     for (const auto &dofs : membrane.nodes())
       {
         Tensor<1, 3> position, f;
@@ -159,7 +168,8 @@ namespace
         // A rotation about (1, 1, 1)/√3, then a shift.
         const Tensor<1, 3> axis = Tensor<1, 3>({1., 1., 1.}) / std::sqrt(3.);
         const Tensor<1, 3> rotated =
-          std::cos(angle) * position + std::sin(angle) * cross_product_3d(axis, position) +
+          std::cos(angle) * position +
+          std::sin(angle) * cross_product_3d(axis, position) +
           (1. - std::cos(angle)) * (axis * position) * axis + shift;
         for (unsigned int d = 0; d < 3; ++d)
           moved[dofs[d]] = rotated[d];
@@ -167,37 +177,46 @@ namespace
     check.at_most(law + ": |E(Qx + b) - E(x)| / E(x)",
                   std::abs(membrane.energy(moved).total() - energy) / energy,
                   1e-12);
-    check.at_most(law + ": |Σ F| / max |F_i|", resultant.norm() / largest_force, 1e-11);
-    check.at_most(law + ": |Σ x × F| / max |x_i × F_i|", torque.norm() / largest_moment, 1e-11);
+    check.at_most(law + ": |Σ F| / max |F_i|",
+                  resultant.norm() / largest_force,
+                  1e-11);
+    check.at_most(law + ": |Σ x × F| / max |x_i × F_i|",
+                  torque.norm() / largest_moment,
+                  1e-11);
   }
 
   /// κ/2 ∫ (2H)² dA of a sphere is 8πκ whatever its radius.
   void
   check_sphere_bending(Checker &check, const unsigned int degree)
   {
-    MembraneParameters p = with_terms("neo-Hookean", true, false, false);
-    p.degree             = degree;
+    MembraneParameters p      = with_terms("neo-Hookean", true, false, false);
+    p.degree                  = degree;
     const double        exact = 8. * numbers::PI * p.bending_modulus;
     std::vector<double> errors;
-    std::cout << "Sphere of radius 3 µm, Q" << degree << ": bending energy / 8πκ\n";
+    std::cout << "Sphere of radius 3 µm, Q" << degree
+              << ": bending energy / 8πκ\n";
     for (unsigned int refinements = 1; refinements <= 5; ++refinements)
       {
         Triangulation<2, 3> sphere;
         GridGenerator::hyper_sphere(sphere, Point<3>(), 3.);
         sphere.refine_global(refinements);
         const Membrane membrane(sphere, p);
-        const double   bending = membrane.energy(membrane.reference_positions()).bending;
+        const double   bending =
+          membrane.energy(membrane.reference_positions()).bending;
         errors.push_back(std::abs(bending - exact) / exact);
-        std::cout << "  " << refinements << " refinements: " << bending / exact << ", error "
-                  << errors.back();
+        std::cout << "  " << refinements << " refinements: " << bending / exact
+                  << ", error " << errors.back();
         if (errors.size() > 1)
-          std::cout << ", order " << std::log2(errors[errors.size() - 2] / errors.back());
+          std::cout << ", order "
+                    << std::log2(errors[errors.size() - 2] / errors.back());
         std::cout << '\n';
       }
-    check.at_least("sphere bending, Q" + std::to_string(degree) + ": observed order, last level",
+    check.at_least("sphere bending, Q" + std::to_string(degree) +
+                     ": observed order, last level",
                    std::log2(errors[errors.size() - 2] / errors.back()),
                    1.8);
-    check.at_most("sphere bending, Q" + std::to_string(degree) + ": relative error, 5 refinements",
+    check.at_most("sphere bending, Q" + std::to_string(degree) +
+                    ": relative error, 5 refinements",
                   errors.back(),
                   1e-3);
   }
@@ -210,10 +229,13 @@ namespace
     if (p.law == "Skalak")
       {
         const double C = (K / G - 1.) / 2.;
-        return G * l1 * (l1 * l1 + l2 * l2 - 2. + 1. - l2 * l2 + C * (l1 * l1 * l2 * l2 - 1.) * l2 * l2);
+        return G * l1 *
+               (l1 * l1 + l2 * l2 - 2. + 1. - l2 * l2 +
+                C * (l1 * l1 * l2 * l2 - 1.) * l2 * l2);
       }
     const double C1 = G / 2., C2 = K - 3. * G;
-    return C1 * (2. * l1 - 2. / (l1 * l1 * l1 * l2 * l2)) + C2 * (l1 * l2 - 1.) * l2;
+    return C1 * (2. * l1 - 2. / (l1 * l1 * l1 * l2 * l2)) +
+           C2 * (l1 * l2 - 1.) * l2;
   }
 
   /// W(λ1, λ2) of each law in closed form.
@@ -223,7 +245,8 @@ namespace
     const double G = p.shear_modulus, K = p.area_dilation_modulus;
     if (p.law == "Skalak")
       {
-        const double C = (K / G - 1.) / 2., I1 = l1 * l1 + l2 * l2 - 2., I2 = l1 * l1 * l2 * l2 - 1.;
+        const double C = (K / G - 1.) / 2., I1 = l1 * l1 + l2 * l2 - 2.,
+                     I2 = l1 * l1 * l2 * l2 - 1.;
         return G / 4. * (I1 * I1 + 2. * I1 - 2. * I2 + C * I2 * I2);
       }
     return G / 2. * (l1 * l1 + l2 * l2 + 1. / (l1 * l1 * l2 * l2) - 3.) +
@@ -237,22 +260,25 @@ namespace
    * -∂W/∂λ1 L, and those on the edge y = λ2 L to zero.
    */
   void
-  check_uniaxial_stretch(Checker &check, const std::string &law, const unsigned int degree)
+  check_uniaxial_stretch(Checker           &check,
+                         const std::string &law,
+                         const unsigned int degree)
   {
-    MembraneParameters p = with_terms(law, false, false, false);
-    p.degree             = degree;
+    MembraneParameters p  = with_terms(law, false, false, false);
+    p.degree              = degree;
     const double        L = 2.;
     Triangulation<2, 3> patch;
     GridGenerator::hyper_cube(patch, 0., L);
     patch.refine_global(2);
-    const Membrane membrane(patch, p);
+    const Membrane        membrane(patch, p);
     const Vector<double> &X = membrane.reference_positions();
 
     for (const double l1 : {1.2, 1.6, 2.0})
       {
         double low = 0.3, high = 1.;
         for (unsigned int i = 0; i < 100; ++i)
-          (tension(p, 0.5 * (low + high), l1) > 0. ? high : low) = 0.5 * (low + high);
+          (tension(p, 0.5 * (low + high), l1) > 0. ? high : low) =
+            0.5 * (low + high);
         const double l2 = 0.5 * (low + high);
 
         Vector<double> x(X);
@@ -261,9 +287,9 @@ namespace
             x[dofs[0]] *= l1;
             x[dofs[1]] *= l2;
           }
-        Vector<double>     force(x.size());
-        const double       energy = membrane.energy_and_forces(x, force).in_plane;
-        double             edge_x = 0., edge_y = 0.;
+        Vector<double> force(x.size());
+        const double   energy = membrane.energy_and_forces(x, force).in_plane;
+        double         edge_x = 0., edge_y = 0.;
         for (const auto &dofs : membrane.nodes())
           {
             if (std::abs(X[dofs[0]] - L) < 1e-12)
@@ -271,14 +297,22 @@ namespace
             if (std::abs(X[dofs[1]] - L) < 1e-12)
               edge_y += force[dofs[1]];
           }
-        const std::string what =
-          law + ", Q" + std::to_string(degree) + ", λ1 = " + std::to_string(l1).substr(0, 3);
+        const std::string what = law + ", Q" + std::to_string(degree) +
+                                 ", λ1 = " + std::to_string(l1).substr(0, 3);
         const double T1 = tension(p, l1, l2);
         std::cout << "  " << what << ": λ2 = " << l2 << ", tension T1 = " << T1
                   << " pN/µm (Cauchy " << T1 / l2 << ")\n";
-        check.near(what + ": energy / (W A0)", energy / (strain_energy(p, l1, l2) * L * L), 1., 1e-10);
-        check.near(what + ": edge force / (-T1 L)", edge_x / (-T1 * L), 1., 1e-10);
-        check.at_most(what + ": |lateral edge force| / (T1 L)", std::abs(edge_y) / (T1 * L), 1e-8);
+        check.near(what + ": energy / (W A0)",
+                   energy / (strain_energy(p, l1, l2) * L * L),
+                   1.,
+                   1e-10);
+        check.near(what + ": edge force / (-T1 L)",
+                   edge_x / (-T1 * L),
+                   1.,
+                   1e-10);
+        check.at_most(what + ": |lateral edge force| / (T1 L)",
+                      std::abs(edge_y) / (T1 * L),
+                      1e-8);
       }
   }
 
@@ -286,8 +320,8 @@ namespace
   void
   check_cell_measures(Checker &check, const unsigned int degree)
   {
-    MembraneParameters   p = with_terms("neo-Hookean", false, false, false);
-    p.degree               = degree;
+    MembraneParameters p = with_terms("neo-Hookean", false, false, false);
+    p.degree             = degree;
     const EvansFungShape shape(7.5);
     double               area_error = 0., volume_error = 0.;
     std::cout << "Evans-Fung cell, Q" << degree << ": area and volume errors\n";
@@ -296,9 +330,12 @@ namespace
         Triangulation<2, 3> surface;
         create_cell(surface, refinements);
         const Membrane membrane(surface, p);
-        const double   a = std::abs(membrane.reference_area() - shape.exact_area()) / shape.exact_area();
-        const double   v =
-          std::abs(membrane.reference_volume() - shape.exact_volume()) / shape.exact_volume();
+        const double   a =
+          std::abs(membrane.reference_area() - shape.exact_area()) /
+          shape.exact_area();
+        const double v =
+          std::abs(membrane.reference_volume() - shape.exact_volume()) /
+          shape.exact_volume();
         std::cout << "  " << refinements << " refinements: area " << a;
         if (area_error > 0.)
           std::cout << " (order " << std::log2(area_error / a) << ")";
@@ -310,8 +347,14 @@ namespace
         volume_error = v;
       }
     const double bound = degree == 1 ? 5e-3 : 1e-5;
-    check.at_most("Q" + std::to_string(degree) + " cell, 4 refinements: relative area error", area_error, bound);
-    check.at_most("Q" + std::to_string(degree) + " cell, 4 refinements: relative volume error", volume_error, bound);
+    check.at_most("Q" + std::to_string(degree) +
+                    " cell, 4 refinements: relative area error",
+                  area_error,
+                  bound);
+    check.at_most("Q" + std::to_string(degree) +
+                    " cell, 4 refinements: relative volume error",
+                  volume_error,
+                  bound);
   }
 
   /**
@@ -326,7 +369,7 @@ namespace
   {
     Triangulation<2, 3> surface;
     create_cell(surface, 2);
-    const double pressure = 2.; // [pN/µm²]
+    const double pressure          = 2.; // [pN/µm²]
     double       loss_with_penalty = 0.;
     for (const double k_V : {500., 0.})
       {
@@ -338,20 +381,30 @@ namespace
         for (unsigned int i = 0; i < w.size(); ++i)
           for (unsigned int d = 0; d < 3; ++d)
             load[membrane.nodes()[i][d]] = -pressure * w[i][d];
-        const EquilibriumReport report = find_equilibrium(membrane, load, x, 1e-6, 20000);
-        const double loss = 1. - membrane.volume(x) / membrane.reference_volume();
-        std::cout << "Cell under " << pressure << " pN/µm², k_V = " << k_V << ": "
-                  << report.iterations << " L-BFGS iterations, volume loss " << loss
-                  << " V0, area change " << membrane.area(x) / membrane.reference_area() - 1.
+        const EquilibriumReport report =
+          find_equilibrium(membrane, load, x, 1e-6, 20000);
+        const double loss =
+          1. - membrane.volume(x) / membrane.reference_volume();
+        std::cout << "Cell under " << pressure << " pN/µm², k_V = " << k_V
+                  << ": " << report.iterations
+                  << " L-BFGS iterations, volume loss " << loss
+                  << " V0, area change "
+                  << membrane.area(x) / membrane.reference_area() - 1.
                   << " A0\n";
         if (k_V > 0.)
           {
             loss_with_penalty = loss;
-            check.at_most("volume loss / (p/k_V) with the volume energy", loss / (pressure / k_V), 1.);
-            check.at_least("volume loss / (p/k_V) with the volume energy", loss / (pressure / k_V), 0.9);
+            check.at_most("volume loss / (p/k_V) with the volume energy",
+                          loss / (pressure / k_V),
+                          1.);
+            check.at_least("volume loss / (p/k_V) with the volume energy",
+                           loss / (pressure / k_V),
+                           0.9);
           }
         else
-          check.at_least("volume loss without / with the volume energy", loss / loss_with_penalty, 3.);
+          check.at_least("volume loss without / with the volume energy",
+                         loss / loss_with_penalty,
+                         3.);
       }
   }
 } // namespace

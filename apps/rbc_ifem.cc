@@ -4,18 +4,13 @@
  *
  *   rbc-ifem FILE.prm               run the experiment FILE describes
  *   rbc-ifem --print-parameters     every parameter with its documentation
+ *   rbc-ifem --list-experiments     the experiments, one per line
  *   rbc-ifem --help                 usage
  */
 
 #include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/solver_failure.h>
-#include <rbc_ifem/experiments/diffusion_experiment.h>
-#include <rbc_ifem/experiments/flow_experiment.h>
-#include <rbc_ifem/experiments/geometry_experiment.h>
-#include <rbc_ifem/experiments/shear_experiment.h>
-#include <rbc_ifem/experiments/stretching_experiment.h>
-#include <rbc_ifem/ifem/ifem_simulation.h>
-#include <rbc_ifem/parameters.h>
+#include <rbc_ifem/experiments/registry.h>
 
 #include <deal.II/base/mpi.h>
 
@@ -35,42 +30,18 @@ namespace
          "       mpirun -np N rbc-ifem FILE.prm  the same on N MPI ranks\n"
          "       rbc-ifem --print-parameters  print every parameter, "
          "documented, as a valid .prm\n"
+         "       rbc-ifem --list-experiments  the names the parameter "
+         "Experiment takes, one per line\n"
          "       rbc-ifem --help              this text\n"
          "Ready experiments are in prm/; the documentation is in doc/.\n";
   }
 
   void
-  print_parameters(std::ostream &out)
-  {
-    ParameterHandler prm;
-    Parameters::declare(prm);
-    prm.print_parameters(out, ParameterHandler::PRM);
-  }
-
-  void
   run(const std::string &filename, const MPI_Comm communicator)
   {
-    ParameterHandler prm;
-    Parameters       parameters;
-    read_parameters(filename, prm, parameters);
-    // Patterns::Selection admits only the experiments that exist.
-    if (parameters.experiment == "flow" && parameters.immersed.enabled)
-      IFEMSimulation(parameters,
-                     communicator,
-                     FlowDomain::capillary(parameters))
-        .run(prm);
-    else if (parameters.experiment == "flow")
-      FlowExperiment(parameters, communicator).run(prm);
-    else if (parameters.experiment == "diffusion" ||
-             parameters.experiment == "layouts" ||
-             parameters.experiment == "mesh convergence")
-      DiffusionExperiment(parameters, communicator).run(prm);
-    else if (parameters.experiment == "shear")
-      ShearExperiment(parameters, communicator).run(prm);
-    else if (parameters.experiment == "stretching")
-      StretchingExperiment(parameters, communicator).run(prm);
-    else
-      GeometryExperiment(parameters, communicator).run(prm);
+    RunParameters parameters;
+    parameters.read(filename);
+    parameters.create_experiment(communicator)->run();
   }
 } // namespace
 
@@ -92,7 +63,14 @@ main(int argc, char *argv[])
   if (arguments.size() == 1 && arguments[0] == "--print-parameters")
     {
       if (root)
-        print_parameters(std::cout);
+        RunParameters().print(std::cout);
+      return 0;
+    }
+  if (arguments.size() == 1 && arguments[0] == "--list-experiments")
+    {
+      if (root)
+        for (const ExperimentType &type : experiment_types())
+          std::cout << type.name << '\n';
       return 0;
     }
   if (arguments.size() != 1 || arguments[0].rfind("-", 0) == 0)
@@ -103,7 +81,7 @@ main(int argc, char *argv[])
             {
               std::cerr << "rbc-ifem: no parameter file given; these are the "
                            "parameters and their defaults:\n\n";
-              print_parameters(std::cerr);
+              RunParameters().print(std::cerr);
               std::cerr << '\n';
             }
           else

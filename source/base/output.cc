@@ -7,7 +7,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
+#include <set>
 #include <stdexcept>
 
 namespace rbc_ifem
@@ -52,6 +54,71 @@ namespace rbc_ifem
                        "it cannot be created: " + problem + ".");
   }
 
+  namespace
+  {
+    /// Every file write_file_atomically() has written in this process.
+    std::set<std::filesystem::path> &
+    files_written_so_far()
+    {
+      static std::set<std::filesystem::path> files;
+      return files;
+    }
+
+    /// @p path without "." components and trailing separators.
+    std::filesystem::path
+    normal_path(const std::string &path)
+    {
+      std::filesystem::path normal =
+        std::filesystem::path(path).lexically_normal();
+      if (!normal.has_filename())
+        normal = normal.parent_path();
+      return normal;
+    }
+  } // namespace
+
+  std::string
+  written_files(const std::string &directory)
+  {
+    const std::filesystem::path         top = normal_path(directory);
+    std::vector<std::string>            names;
+    std::map<std::string, unsigned int> subdirectories;
+    for (const std::filesystem::path &file : files_written_so_far())
+      {
+        const std::filesystem::path relative = file.lexically_relative(top);
+        const std::string           first =
+          relative.empty() ? "" : relative.begin()->string();
+        if (first.empty() || first == ".." || file.extension() == ".vtu" ||
+            file.extension() == ".pvtu")
+          continue;
+        if (relative.has_parent_path())
+          ++subdirectories[first];
+        else
+          names.push_back(first);
+      }
+    std::string list;
+    const auto  append = [&list](const std::string &item) {
+      list += (list.empty() ? "" : ", ") + item;
+    };
+    for (const std::string &name : names)
+      append(name);
+    for (const auto &[name, count] : subdirectories)
+      append(name + "/ (" + std::to_string(count) + " files)");
+    return list;
+  }
+
+  void
+  write_parameters(const ParameterHandler &prm,
+                   const std::string      &directory,
+                   const MPI_Comm          communicator)
+  {
+    create_output_directory(directory, communicator);
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      write_file_atomically(directory + "/parameters.prm",
+                            [&](std::ostream &out) {
+                              prm.print_parameters(out, ParameterHandler::PRM);
+                            });
+  }
+
   void
   write_file_atomically(const std::string                         &path,
                         const std::function<void(std::ostream &)> &writer)
@@ -65,6 +132,7 @@ namespace rbc_ifem
         throw std::runtime_error("could not write the file '" + path + "'");
     }
     std::filesystem::rename(temporary, path);
+    files_written_so_far().insert(normal_path(path));
   }
 
   namespace

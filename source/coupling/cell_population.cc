@@ -1,4 +1,5 @@
 #include <rbc_ifem/coupling/cell_population.h>
+#include <rbc_ifem/coupling/membrane_forces.h>
 #include <rbc_ifem/geometry/cell_surface.h>
 
 #include <algorithm>
@@ -10,23 +11,25 @@ namespace rbc_ifem
                                  const CellParameters             &cells,
                                  const MembraneParameters         &membrane)
     : references(placements,
-                 EvansFungShape::named(cells.shape, cells.diameter),
+                 EvansFungShape::of(cells),
                  cells.surface_refinements)
     , flat_mapping(1)
   {
     for (const Triangulation<2, 3> *surface : references.surfaces())
       {
-        membranes.push_back(std::make_unique<Membrane>(*surface, membrane));
-        x.push_back(membranes.back()->reference_positions());
+        cell_membranes.push_back(
+          std::make_unique<Membrane>(*surface, membrane));
+        x.push_back(cell_membranes.back()->reference_positions());
         forces.emplace_back(x.back().size());
-        n_membrane_points += membranes.back()->nodes().size();
+        n_membrane_points += cell_membranes.back()->nodes().size();
       }
+    add_force(std::make_unique<MembraneElasticity>(cell_membranes));
   }
 
   unsigned int
   CellPopulation::size() const
   {
-    return membranes.size();
+    return cell_membranes.size();
   }
 
   unsigned int
@@ -41,47 +44,45 @@ namespace rbc_ifem
     std::vector<Point<3>> result;
     result.reserve(n_membrane_points);
     for (unsigned int c = 0; c < size(); ++c)
-      for (const auto &dofs : membranes[c]->nodes())
+      for (const auto &dofs : cell_membranes[c]->nodes())
         result.emplace_back(x[c][dofs[0]], x[c][dofs[1]], x[c][dofs[2]]);
     return result;
   }
 
   void
-  CellPopulation::hold(const double stiffness)
+  CellPopulation::add_force(std::unique_ptr<CellForce> force)
   {
-    tether_stiffness = stiffness;
+    cell_forces.push_back(std::move(force));
   }
 
   std::vector<Tensor<1, 3>>
   CellPopulation::compute_forces()
   {
+    for (Vector<double> &f : forces)
+      f = 0.;
+    external_force = 0.;
+    for (const auto &force : cell_forces)
+      external_force += force->add_forces(x, forces).external_force;
+
     std::vector<Tensor<1, 3>> result;
     result.reserve(n_membrane_points);
-    total_tether_force = 0.;
     for (unsigned int c = 0; c < size(); ++c)
-      {
-        membranes[c]->energy_and_forces(x[c], forces[c]);
-        if (tether_stiffness > 0.)
-          {
-            const Vector<double> &X = membranes[c]->reference_positions();
-            for (unsigned int i = 0; i < x[c].size(); ++i)
-              {
-                const double spring = -tether_stiffness * (x[c][i] - X[i]);
-                forces[c][i] += spring;
-                total_tether_force[membranes[c]->component(i)] += spring;
-              }
-          }
-        for (const auto &dofs : membranes[c]->nodes())
-          result.push_back(Tensor<1, 3>(
-            {forces[c][dofs[0]], forces[c][dofs[1]], forces[c][dofs[2]]}));
-      }
+      for (const auto &dofs : cell_membranes[c]->nodes())
+        result.push_back(Tensor<1, 3>(
+          {forces[c][dofs[0]], forces[c][dofs[1]], forces[c][dofs[2]]}));
     return result;
   }
 
   Tensor<1, 3>
   CellPopulation::held_force() const
   {
-    return total_tether_force;
+    return external_force;
+  }
+
+  const std::vector<std::unique_ptr<Membrane>> &
+  CellPopulation::membranes() const
+  {
+    return cell_membranes;
   }
 
   void
@@ -91,7 +92,7 @@ namespace rbc_ifem
     AssertDimension(velocities.size(), n_membrane_points);
     auto velocity = velocities.begin();
     for (unsigned int c = 0; c < size(); ++c)
-      for (const auto &dofs : membranes[c]->nodes())
+      for (const auto &dofs : cell_membranes[c]->nodes())
         {
           for (unsigned int d = 0; d < 3; ++d)
             x[c][dofs[d]] += time_step * (*velocity)[d];
@@ -110,10 +111,10 @@ namespace rbc_ifem
         const SurfaceMeasures measures =
           measure_surface(*surfaces[c], flat_mapping);
         shape.centroid = measures.centroid;
-        shape.area     = membranes[c]->area(x[c]);
-        shape.volume   = membranes[c]->volume(x[c]);
+        shape.area     = cell_membranes[c]->area(x[c]);
+        shape.volume   = cell_membranes[c]->volume(x[c]);
         double x_min = std::numeric_limits<double>::max(), x_max = -x_min;
-        for (const auto &dofs : membranes[c]->nodes())
+        for (const auto &dofs : cell_membranes[c]->nodes())
           {
             const Point<3> p(x[c][dofs[0]], x[c][dofs[1]], x[c][dofs[2]]);
             x_min            = std::min(x_min, p[0]);
@@ -140,7 +141,7 @@ namespace rbc_ifem
     for (unsigned int c = 0; c < size(); ++c)
       {
         surfaces.push_back(std::make_unique<Triangulation<2, 3>>());
-        membranes[c]->build_surface(x[c], *surfaces.back());
+        cell_membranes[c]->build_surface(x[c], *surfaces.back());
       }
     return surfaces;
   }
@@ -159,19 +160,20 @@ namespace rbc_ifem
       for (const auto &cell : surface->active_cell_iterators())
         for (const unsigned int l : cell->line_indices())
           longest_edge = std::max(longest_edge, cell->line(l)->diameter());
-    return longest_edge / membranes.front()->get_dof_handler().get_fe().degree;
+    return longest_edge /
+           cell_membranes.front()->get_dof_handler().get_fe().degree;
   }
 
   double
   CellPopulation::reference_area(const unsigned int c) const
   {
-    return membranes[c]->reference_area();
+    return cell_membranes[c]->reference_area();
   }
 
   double
   CellPopulation::reference_volume(const unsigned int c) const
   {
-    return membranes[c]->reference_volume();
+    return cell_membranes[c]->reference_volume();
   }
 
   std::vector<std::string>
@@ -184,7 +186,10 @@ namespace rbc_ifem
       {
         const std::string file = name + "_" + std::to_string(c) + "_" +
                                  Utilities::int_to_string(counter, 4);
-        membranes[c]->write_vtu(x[c], directory, file, {{"force", forces[c]}});
+        cell_membranes[c]->write_vtu(x[c],
+                                     directory,
+                                     file,
+                                     {{"force", forces[c]}});
         files.push_back(file + ".vtu");
       }
     return files;

@@ -1,18 +1,17 @@
+#include <rbc_ifem/base/csv.h>
 #include <rbc_ifem/base/output.h>
 #include <rbc_ifem/experiments/flow_experiment.h>
 #include <rbc_ifem/geometry/capillary_mesh.h>
 
-#include <fstream>
-#include <iomanip>
+#include <cmath>
 
 namespace rbc_ifem
 {
-  FlowExperiment::FlowExperiment(const Parameters &parameters,
-                                 const MPI_Comm    communicator)
-    : parameters(parameters)
-    , communicator(communicator)
-    , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
-    , timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times)
+  FlowExperiment::FlowExperiment(const std::string      &name,
+                                 const Parameters       &parameters,
+                                 const ParameterHandler &prm,
+                                 const MPI_Comm          communicator)
+    : Experiment(name, parameters, prm, communicator)
     , triangulation(communicator,
                     Triangulation<3>::none,
                     false,
@@ -25,15 +24,14 @@ namespace rbc_ifem
   {}
 
   void
-  FlowExperiment::run(const ParameterHandler &prm)
+  FlowExperiment::setup()
   {
     const FluidParameters &f = parameters.fluid;
-    const double reynolds    = f.density * std::abs(f.inlet_mean_speed) * 2. *
-                            parameters.geometry.capillary_radius / f.viscosity;
-    pcout << "rbc-ifem: experiment 'flow' (" << f.model << ") on "
-          << Utilities::MPI::n_mpi_processes(communicator) << " rank(s)\n"
-          << "  Reynolds number ρ ū 2R / μ = " << reynolds << std::endl;
-
+    pcout << "  " << name_of(f.model, fluid_model_names())
+          << ", Reynolds number ρ ū 2R / μ = "
+          << f.density * std::abs(f.inlet_mean_speed) * 2. *
+               parameters.geometry.capillary_radius / f.viscosity
+          << std::endl;
     {
       TimerOutput::Scope scope(timer, "fluid mesh");
       create_fluid_mesh(triangulation,
@@ -45,35 +43,32 @@ namespace rbc_ifem
           << fluid.get_dof_handler().n_dofs() << " DoFs ("
           << fluid.owned_partitioning()[0].size() << " velocity, "
           << fluid.owned_partitioning()[1].size() << " pressure)" << std::endl;
+  }
 
+  void
+  FlowExperiment::execute()
+  {
     const std::string &directory = parameters.output_directory;
-    create_output_directory(directory, communicator);
-    const bool    root = Utilities::MPI::this_mpi_process(communicator) == 0;
-    std::ofstream table;
-    if (root)
-      {
-        write_file_atomically(directory + "/parameters.prm",
-                              [&](std::ostream &out) {
-                                prm.print_parameters(out,
-                                                     ParameterHandler::PRM);
-                              });
-        table.open(directory + "/flow.csv");
-        table << "time,flow_rate,pressure_drop,max_velocity,divergence_l2,"
-                 "frame_velocity,newton_iterations,linear_iterations\n"
-              << std::setprecision(10);
-      }
-
+    const bool root = Utilities::MPI::this_mpi_process(communicator) == 0;
+    CsvTable   table("time,flow_rate,pressure_drop,max_velocity,"
+                     "divergence_l2,frame_velocity,newton_iterations,"
+                     "linear_iterations");
     std::vector<std::pair<double, std::string>> fields;
     for (unsigned int step = 1; step <= parameters.time.n_steps; ++step)
       {
         const double       time   = step * parameters.time.time_step;
         const StepReport   report = fluid.advance();
         const FlowMeasures m      = fluid.measure();
+        table.add(time,
+                  m.flow_rate,
+                  m.pressure_drop,
+                  m.max_velocity,
+                  m.divergence_l2,
+                  parameters.fluid.frame_velocity,
+                  report.newton_iterations,
+                  report.linear_iterations);
         if (root)
-          table << time << ',' << m.flow_rate << ',' << m.pressure_drop << ','
-                << m.max_velocity << ',' << m.divergence_l2 << ','
-                << f.frame_velocity << ',' << report.newton_iterations << ','
-                << report.linear_iterations << std::endl;
+          table.write(directory + "/flow.csv");
         pcout << "  step " << step << ", t = " << time
               << " s: " << report.newton_iterations << " Newton, "
               << report.linear_iterations << " FGMRES iterations, residual "
@@ -88,10 +83,5 @@ namespace rbc_ifem
             write_pvd(directory, "flow", fields, communicator);
           }
       }
-    write_timing(timer, directory, communicator);
-    pcout << "  wrote " << directory
-          << "/: parameters.prm, flow.csv, flow.pvd, timing.csv" << std::endl;
-    pcout << "  peak memory: " << peak_memory_mb(communicator)
-          << " MB (largest over ranks)" << std::endl;
   }
 } // namespace rbc_ifem

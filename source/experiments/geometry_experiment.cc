@@ -1,23 +1,17 @@
-#include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/output.h>
 #include <rbc_ifem/experiments/geometry_experiment.h>
 #include <rbc_ifem/geometry/capillary_mesh.h>
 
-#include <iomanip>
-#include <sstream>
-
 namespace rbc_ifem
 {
-  GeometryExperiment::GeometryExperiment(const Parameters &parameters,
-                                         const MPI_Comm    communicator)
-    : parameters(parameters)
-    , communicator(communicator)
-    , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
-    , timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times)
+  GeometryExperiment::GeometryExperiment(const std::string      &name,
+                                         const Parameters       &parameters,
+                                         const ParameterHandler &prm,
+                                         const MPI_Comm          communicator)
+    : Experiment(name, parameters, prm, communicator)
     , layout(parameters.layout, parameters.geometry, parameters.cells)
     , membranes(layout.placements(),
-                EvansFungShape::named(parameters.cells.shape,
-                                      parameters.cells.diameter),
+                EvansFungShape::of(parameters.cells),
                 parameters.cells.surface_refinements)
     , fluid_mesh(communicator,
                  Triangulation<3>::none,
@@ -30,26 +24,19 @@ namespace rbc_ifem
   {}
 
   void
-  GeometryExperiment::run(const ParameterHandler &prm)
+  GeometryExperiment::setup()
   {
-    pcout << "rbc-ifem: experiment 'geometry' on "
-          << Utilities::MPI::n_mpi_processes(communicator) << " rank(s)\n"
-          << "  layout: " << parameters.layout.kind << ", "
+    pcout << "  layout: "
+          << name_of(parameters.layout.kind, layout_kind_names()) << ", "
           << layout.placements().size() << " of at most " << layout.max_cells()
           << " cells, cell length along the axis " << layout.cell_length()
           << " µm" << std::endl;
-
     report_membranes();
     create_meshes();
-    write_output(prm);
-    write_timing(timer, parameters.output_directory, communicator);
-
-    pcout << "  peak memory: " << peak_memory_mb(communicator)
-          << " MB (largest over ranks)" << std::endl;
   }
 
   void
-  GeometryExperiment::report_membranes() const
+  GeometryExperiment::report_membranes()
   {
     TimerOutput::Scope scope(timer, "clearance check");
     pcout << "  membranes: " << membranes.size() << " x "
@@ -98,12 +85,10 @@ namespace rbc_ifem
   }
 
   void
-  GeometryExperiment::write_output(const ParameterHandler &prm) const
+  GeometryExperiment::execute()
   {
     TimerOutput::Scope scope(timer, "output");
     const std::string &directory = parameters.output_directory;
-    create_output_directory(directory, communicator);
-
     write_volume_mesh(fluid_mesh, directory, "fluid_mesh", communicator);
     write_volume_mesh(diffusion_mesh,
                       directory,
@@ -115,21 +100,7 @@ namespace rbc_ifem
                                                       "membranes",
                                                       communicator);
     write_pvd(directory, "membranes", {{0., membrane_file}}, communicator);
-
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
-      {
-        write_file_atomically(directory + "/parameters.prm",
-                              [&](std::ostream &out) {
-                                prm.print_parameters(out,
-                                                     ParameterHandler::PRM);
-                              });
-        write_file_atomically(directory + "/cells.csv", [&](std::ostream &out) {
-          membranes.write_table(out);
-        });
-      }
-    pcout << "  wrote " << directory << "/: parameters.prm, cells.csv, "
-          << "fluid_mesh.pvd, diffusion_mesh.pvd (+ _boundary), membranes.pvd, "
-          << "timing.csv" << std::endl;
+      membranes.table().write(directory + "/cells.csv");
   }
-
 } // namespace rbc_ifem

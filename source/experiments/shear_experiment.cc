@@ -1,49 +1,172 @@
+#include <rbc_ifem/base/csv.h>
+#include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/output.h>
 #include <rbc_ifem/coupling/cell_population.h>
+#include <rbc_ifem/coupling/time_step_limit.h>
+#include <rbc_ifem/experiments/registry.h>
 #include <rbc_ifem/experiments/shear_experiment.h>
 #include <rbc_ifem/ifem/flow_domain.h>
 #include <rbc_ifem/ifem/ifem_simulation.h>
+#include <rbc_ifem/ifem/run_observer.h>
 
+#include <deal.II/base/patterns.h>
 #include <deal.II/base/timer.h>
 
 #include <cmath>
-#include <iomanip>
 #include <limits>
-#include <sstream>
 
 namespace rbc_ifem
 {
+  void
+  ShearParameters::add_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Shear");
+    prm.add_parameter("Shear rate",
+                      shear_rate,
+                      "Experiment 'shear': the rate γ̇ of the simple shear "
+                      "v = (γ̇ y, 0, 0) the box walls impose [1/s]. Results "
+                      "depend on it only through the capillary number.",
+                      Patterns::Double(0.));
+    prm.add_parameter("Capillary numbers",
+                      capillary_numbers,
+                      "One run per Ca = μ a γ̇ / G, a the capsule radius "
+                      "(Cells/Diameter / 2) and G the membrane's shear "
+                      "modulus: every modulus of subsection Membrane is "
+                      "scaled by the same factor to give this G, so their "
+                      "ratios are kept.",
+                      Patterns::List(Patterns::Double(0.), 1));
+    prm.add_parameter("Box size",
+                      box,
+                      "Length (x, the flow direction; the ends x = ±L/2 are "
+                      "open), height (y, between the moving walls) and width "
+                      "(z, walls moving with the shear) of the box, centred "
+                      "on the capsule [µm]. Each must be a multiple of "
+                      "Cells/Diameter, the coarse mesh's cell size.",
+                      Patterns::List(Patterns::Double(0.), 3, 3, ","));
+    prm.add_parameter("Total strain",
+                      strain,
+                      "Each run lasts until γ̇ t reaches this.",
+                      Patterns::Double(0.));
+    prm.add_parameter("Averaging strain",
+                      averaging_strain,
+                      "The steady deformation is the mean over the steadiest "
+                      "window of this length in γ̇ t: the one over which D "
+                      "changes least. Without bending stiffness the membrane "
+                      "of a capsule at small Ca wrinkles late in a run and D "
+                      "creeps up (doc/validation.md); the window finds the "
+                      "plateau before that.",
+                      Patterns::Double(0.));
+    prm.add_parameter("Output strain interval",
+                      output_strain,
+                      "A shear.csv row, a cells.csv row and the VTU files "
+                      "every γ̇ t of this length.",
+                      Patterns::Double(0.));
+    prm.add_parameter("Time step fraction",
+                      time_step_fraction,
+                      "Δt of each run as a fraction of its explicit-coupling "
+                      "time step limit (doc/ifem.md), which scales with 1/G: "
+                      "small Ca take more steps. Time/Time step is not used.",
+                      Patterns::Double(0., 1.));
+    prm.leave_subsection();
+  }
+
+  void
+  ShearParameters::validate(const Parameters &parameters) const
+  {
+    const CellParameters &cells = parameters.cells;
+    require_positive("Shear/Shear rate", shear_rate, " 1/s");
+    require_positive("Shear/Total strain", strain, "");
+    require_positive("Shear/Output strain interval", output_strain, "");
+    require_positive("Shear/Time step fraction", time_step_fraction, "");
+    for (const double ca : capillary_numbers)
+      require_positive("Shear/Capillary numbers", ca, "");
+    if (!(averaging_strain > 0. && averaging_strain < strain))
+      throw InputError("Shear/Averaging strain",
+                       to_text(averaging_strain),
+                       "it must be > 0 and below Shear/Total strain = " +
+                         to_text(strain) + ".");
+    const char *names[] = {"length", "height", "width"};
+    for (unsigned int d = 0; d < 3; ++d)
+      {
+        const double cells_across = box[d] / cells.diameter;
+        if (!(cells_across >= 2. &&
+              std::abs(cells_across - std::round(cells_across)) < 1e-6))
+          throw InputError("Shear/Box size",
+                           to_text(box[0]) + ", " + to_text(box[1]) + ", " +
+                             to_text(box[2]),
+                           std::string("the box ") + names[d] +
+                             " must be a multiple of Cells/Diameter = " +
+                             to_text(cells.diameter) +
+                             " µm, at least twice it, so that the capsule "
+                             "fits.");
+      }
+  }
+
   namespace
   {
-    std::string
-    to_text(const double value)
+    /**
+     * The capsule's Taylor deformation and inclination over a run: shear.csv
+     * (time,taylor_deformation,inclination_over_pi), the progress line's
+     * Taylor deformation, and the history steady_state() reads.
+     */
+    class TaylorDeformationHistory : public RunObserver
     {
-      std::ostringstream text;
-      text << std::setprecision(10) << value;
-      return text.str();
-    }
+    public:
+      void
+      record(const double time, const std::vector<CellShape> &shapes) override
+      {
+        history.push_back(
+          {{time, shapes[0].taylor_deformation, shapes[0].inclination}});
+      }
 
-    /// A copy of @p prm with the parameters of one run set in it.
-    void
-    copy_parameters(const ParameterHandler &prm, ParameterHandler &copy)
-    {
-      Parameters::declare(copy);
-      std::ostringstream text;
-      prm.print_parameters(text, ParameterHandler::PRM);
-      copy.parse_input_from_string(text.str());
-    }
+      std::string
+      progress(const std::vector<CellShape> &shapes) const override
+      {
+        return ", Taylor deformation " + to_text(shapes[0].taylor_deformation);
+      }
+
+      void
+      write_tables(const std::string &directory) const override
+      {
+        CsvTable table("time,taylor_deformation,inclination_over_pi");
+        for (const auto &[time, deformation, inclination] : history)
+          table.add(time, deformation, inclination / numbers::PI);
+        table.write(directory + "/shear.csv");
+      }
+
+      /// Time [s], Taylor deformation, inclination [rad] of every record.
+      std::vector<std::array<double, 3>> history;
+    };
   } // namespace
 
-  ShearExperiment::ShearExperiment(const Parameters &parameters,
-                                   const MPI_Comm    communicator)
-    : parameters(parameters)
-    , communicator(communicator)
-    , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
+  ShearExperiment::ShearExperiment(const std::string      &name,
+                                   const Parameters       &parameters,
+                                   const ShearParameters  &shear,
+                                   const ParameterHandler &prm,
+                                   const MPI_Comm          communicator)
+    : Experiment(name, parameters, prm, communicator)
+    , shear(shear)
+  {}
+
+  ShearExperiment::~ShearExperiment() = default;
+
+  void
+  ShearExperiment::setup()
   {
+    pcout << "  a spherical capsule of radius "
+          << parameters.cells.diameter / 2. << " µm ("
+          << parameters.membrane.law
+          << ") in simple shear γ̇ = " << shear.shear_rate << " 1/s, box "
+          << shear.box[0] << " x " << shear.box[1] << " x " << shear.box[2]
+          << " µm, " << shear.capillary_numbers.size()
+          << " capillary number(s), to γ̇ t = " << shear.strain << std::endl;
     // The capsule's mesh and the fluid mesh around it do not depend on Ca:
     // the box's coarse cells have the capsule's diameter as edge, halved by
     // every global and band refinement.
-    point_spacing = CellPopulation(FlowDomain::shear_box(parameters).placements,
+    point_spacing = CellPopulation(FlowDomain::shear_box(shear.box,
+                                                         shear.shear_rate,
+                                                         parameters)
+                                     .placements,
                                    parameters.cells,
                                    parameters.membrane)
                       .point_spacing();
@@ -51,48 +174,61 @@ namespace rbc_ifem
                 std::pow(2.,
                          parameters.mesh.fluid_global_refinements +
                            parameters.mesh.fluid_band_refinements);
+    for (const double capillary_number : shear.capillary_numbers)
+      runs.push_back(derive_run(capillary_number));
   }
 
-  Parameters
-  ShearExperiment::parameters_for(const double capillary_number) const
+  std::unique_ptr<RunParameters>
+  ShearExperiment::derive_run(const double capillary_number) const
   {
-    Parameters             p      = parameters;
-    const ShearParameters &shear  = parameters.shear;
-    const double           factor = p.fluid.viscosity * p.cells.diameter / 2. *
-                          shear.shear_rate /
-                          (capillary_number * p.membrane.shear_modulus);
-    for (double *modulus : {&p.membrane.shear_modulus,
-                            &p.membrane.area_dilation_modulus,
-                            &p.membrane.bending_modulus,
-                            &p.membrane.area_penalty,
-                            &p.membrane.volume_penalty})
+    MembraneParameters membrane = parameters.membrane;
+    const double       factor   = parameters.fluid.viscosity *
+                          parameters.cells.diameter / 2. * shear.shear_rate /
+                          (capillary_number * membrane.shear_modulus);
+    for (double *modulus : {&membrane.shear_modulus,
+                            &membrane.area_dilation_modulus,
+                            &membrane.bending_modulus,
+                            &membrane.area_penalty,
+                            &membrane.volume_penalty})
       *modulus *= factor;
 
-    p.immersed.enabled             = true;
-    p.immersed.follow_cells        = false;
-    p.immersed.diffusion_interval  = 0;
-    p.immersed.checkpoint_interval = 0;
-    p.immersed.resume              = false;
-    p.fluid.frame_velocity         = 0.;
-
     // Whole steps to the total strain, each within the fraction of the limit.
-    const CouplingTimeStepLimit limit(p.fluid.viscosity,
-                                      p.membrane,
+    const CouplingTimeStepLimit limit(parameters.fluid.viscosity,
+                                      membrane,
                                       point_spacing,
                                       mesh_size);
     const double                largest_strain_step =
       shear.time_step_fraction * limit.limit * shear.shear_rate;
-    p.time.n_steps =
+    const unsigned int n_steps =
       static_cast<unsigned int>(std::ceil(shear.strain / largest_strain_step));
-    p.time.time_step = shear.strain / shear.shear_rate / p.time.n_steps;
-    p.time.output_interval =
-      std::max(1l,
-               std::lround(shear.output_strain /
-                           (shear.shear_rate * p.time.time_step)));
-    p.immersed.progress_interval = p.time.output_interval;
-    p.output_directory =
-      parameters.output_directory + "/ca_" + to_text(capillary_number);
-    return p;
+    const double time_step       = shear.strain / shear.shear_rate / n_steps;
+    const long   output_interval = std::max(
+      1l, std::lround(shear.output_strain / (shear.shear_rate * time_step)));
+
+    auto run = std::make_unique<RunParameters>();
+    run->derive(
+      prm,
+      {{"",
+        "Output directory",
+        parameters.output_directory + "/ca_" + csv_row(capillary_number)},
+       {"Membrane", "Shear modulus", exact_text(membrane.shear_modulus)},
+       {"Membrane",
+        "Area dilation modulus",
+        exact_text(membrane.area_dilation_modulus)},
+       {"Membrane", "Bending modulus", exact_text(membrane.bending_modulus)},
+       {"Membrane", "Area penalty", exact_text(membrane.area_penalty)},
+       {"Membrane", "Volume penalty", exact_text(membrane.volume_penalty)},
+       {"Time", "Time step", exact_text(time_step)},
+       {"Time", "Number of steps", std::to_string(n_steps)},
+       {"Time", "Output interval", std::to_string(output_interval)},
+       {"Immersed cells", "Enabled", "true"},
+       {"Immersed cells", "Follow cells", "false"},
+       {"Immersed cells", "Diffusion interval", "0"},
+       {"Immersed cells", "Checkpoint interval", "0"},
+       {"Immersed cells", "Resume", "false"},
+       {"Immersed cells", "Progress interval", std::to_string(output_interval)},
+       {"Fluid", "Frame velocity", "0"}});
+    return run;
   }
 
   ShearSummary
@@ -101,11 +237,11 @@ namespace rbc_ifem
   {
     // The samples are one output interval apart (the last one may be
     // closer); a window holds the samples spanning Averaging strain.
-    const double       rate     = parameters.shear.shear_rate;
-    const double       spacing  = rate * (history[1][0] - history[0][0]);
-    const unsigned int n_window = std::min<unsigned int>(
-      history.size(),
-      std::lround(parameters.shear.averaging_strain / spacing) + 1);
+    const double       rate    = shear.shear_rate;
+    const double       spacing = rate * (history[1][0] - history[0][0]);
+    const unsigned int n_window =
+      std::min<unsigned int>(history.size(),
+                             std::lround(shear.averaging_strain / spacing) + 1);
     ShearSummary best;
     double       least_change = std::numeric_limits<double>::infinity();
     for (unsigned int first = 0; first + n_window <= history.size(); ++first)
@@ -132,38 +268,34 @@ namespace rbc_ifem
   }
 
   ShearSummary
-  ShearExperiment::run_one(const double            capillary_number,
-                           const ParameterHandler &prm) const
+  ShearExperiment::run_one(const double         capillary_number,
+                           const RunParameters &run)
   {
-    const Parameters p = parameters_for(capillary_number);
-    ParameterHandler used;
-    copy_parameters(prm, used);
-    used.set("Output directory", p.output_directory);
-    used.enter_subsection("Membrane");
-    used.set("Shear modulus", to_text(p.membrane.shear_modulus));
-    used.set("Area dilation modulus",
-             to_text(p.membrane.area_dilation_modulus));
-    used.set("Bending modulus", to_text(p.membrane.bending_modulus));
-    used.set("Area penalty", to_text(p.membrane.area_penalty));
-    used.set("Volume penalty", to_text(p.membrane.volume_penalty));
-    used.leave_subsection();
-    used.enter_subsection("Time");
-    used.set("Time step", to_text(p.time.time_step));
-    used.set("Number of steps", to_text(p.time.n_steps));
-    used.set("Output interval", to_text(p.time.output_interval));
-    used.leave_subsection();
-
+    const Parameters &p = run.model();
     pcout << "\nCa = " << capillary_number
           << ": G = " << p.membrane.shear_modulus
           << " pN/µm, Δt = " << p.time.time_step
-          << " s (γ̇ Δt = " << parameters.shear.shear_rate * p.time.time_step
-          << "), " << p.time.n_steps << " steps, in " << p.output_directory
-          << std::endl;
-    Timer          clock;
-    IFEMSimulation simulation(p, communicator, FlowDomain::shear_box(p));
-    simulation.run(used);
+          << " s (γ̇ Δt = " << shear.shear_rate * p.time.time_step << "), "
+          << p.time.n_steps << " steps, in " << p.output_directory << std::endl;
+    Timer                    clock;
+    TimerOutput              run_timer(MPI_COMM_SELF,
+                          pcout,
+                          TimerOutput::never,
+                          TimerOutput::wall_times);
+    TaylorDeformationHistory deformation;
+    IFEMSimulation           simulation(p,
+                              FlowDomain::shear_box(shear.box,
+                                                    shear.shear_rate,
+                                                    p),
+                              communicator,
+                              run_timer);
+    simulation.add_observer(deformation);
+    simulation.setup();
+    write_parameters(run.handler(), p.output_directory, communicator);
+    simulation.run();
+    write_timing(run_timer, p.output_directory, communicator);
 
-    ShearSummary summary = steady_state(simulation.run_record().shear_history);
+    ShearSummary summary     = steady_state(deformation.history);
     summary.capillary_number = capillary_number;
     summary.time_step        = p.time.time_step;
     summary.n_steps          = p.time.n_steps;
@@ -177,46 +309,26 @@ namespace rbc_ifem
   }
 
   void
-  ShearExperiment::run(const ParameterHandler &prm)
+  ShearExperiment::execute()
   {
-    const ShearParameters &shear = parameters.shear;
-    pcout << "rbc-ifem: experiment 'shear': a spherical capsule of radius "
-          << parameters.cells.diameter / 2. << " µm ("
-          << parameters.membrane.law
-          << ") in simple shear γ̇ = " << shear.shear_rate << " 1/s, box "
-          << shear.box[0] << " x " << shear.box[1] << " x " << shear.box[2]
-          << " µm, " << shear.capillary_numbers.size()
-          << " capillary number(s), to γ̇ t = " << shear.strain << std::endl;
-    const std::string &directory = parameters.output_directory;
-    create_output_directory(directory, communicator);
-    if (Utilities::MPI::this_mpi_process(communicator) == 0)
-      write_file_atomically(directory + "/parameters.prm",
-                            [&](std::ostream &out) {
-                              prm.print_parameters(out, ParameterHandler::PRM);
-                            });
-
-    std::vector<ShearSummary> summaries;
-    for (const double capillary_number : shear.capillary_numbers)
+    CsvTable summaries(
+      "capillary_number,steady_deformation,steady_inclination_over_pi,"
+      "steady_from_strain,steady_to_strain,time_step,n_steps,wall_seconds");
+    for (unsigned int r = 0; r < runs.size(); ++r)
       {
-        summaries.push_back(run_one(capillary_number, prm));
+        const double       ca = shear.capillary_numbers[r];
+        TimerOutput::Scope scope(timer, "Ca = " + csv_row(ca));
+        const ShearSummary s = run_one(ca, *runs[r]);
+        summaries.add(s.capillary_number,
+                      s.steady_deformation,
+                      s.steady_inclination,
+                      s.steady_from,
+                      s.steady_to,
+                      s.time_step,
+                      s.n_steps,
+                      s.wall_seconds);
         if (Utilities::MPI::this_mpi_process(communicator) == 0)
-          write_file_atomically(
-            directory + "/shear_summary.csv", [&](std::ostream &out) {
-              out
-                << "capillary_number,steady_deformation,steady_inclination_over_pi,"
-                   "steady_from_strain,steady_to_strain,time_step,n_steps,wall_seconds\n"
-                << std::setprecision(10);
-              for (const ShearSummary &s : summaries)
-                out << s.capillary_number << ',' << s.steady_deformation << ','
-                    << s.steady_inclination << ',' << s.steady_from << ','
-                    << s.steady_to << ',' << s.time_step << ',' << s.n_steps
-                    << ',' << s.wall_seconds << '\n';
-            });
+          summaries.write(parameters.output_directory + "/shear_summary.csv");
       }
-    pcout
-      << "\nwrote " << directory
-      << "/: parameters.prm, shear_summary.csv and a directory "
-      << "ca_<Ca>/ per run (shear.csv, cells.csv, flow.csv, flow.pvd, cell_0.pvd, timing.csv)"
-      << std::endl;
   }
 } // namespace rbc_ifem

@@ -1,32 +1,78 @@
+#include <rbc_ifem/base/csv.h>
+#include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/output.h>
 #include <rbc_ifem/experiments/stretching_experiment.h>
 #include <rbc_ifem/geometry/cell_surface.h>
-#include <rbc_ifem/membrane/membrane.h>
 #include <rbc_ifem/membrane/membrane_equilibrium.h>
 
-#include <deal.II/base/timer.h>
 #include <deal.II/base/utilities.h>
 
 #include <algorithm>
 #include <iomanip>
 #include <numeric>
-#include <sstream>
 
 namespace rbc_ifem
 {
-  StretchingExperiment::StretchingExperiment(const Parameters &parameters,
-                                             const MPI_Comm    communicator)
-    : parameters(parameters)
-    , communicator(communicator)
-    , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
+  void
+  StretchingParameters::add_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Stretching");
+    prm.add_parameter("Maximum force",
+                      max_force,
+                      "Experiment 'stretching': the largest total force F "
+                      "each bead pulls with [pN].",
+                      Patterns::Double(0.));
+    prm.add_parameter("Number of force steps",
+                      n_force_steps,
+                      "Equilibria at F = 0 and at this many equal steps up to "
+                      "the maximum force.",
+                      Patterns::Integer(1));
+    prm.add_parameter("Attached area fraction",
+                      attached_fraction,
+                      "Fraction of the membrane area each bead holds, at the "
+                      "two ends of a diameter. 0.025 is a contact region about "
+                      "2 µm across, as Dao et al. (2003) assume for the beads "
+                      "of the experiments.",
+                      Patterns::Double(0., 0.25));
+    prm.add_parameter("Residual tolerance",
+                      tolerance,
+                      "An equilibrium is found when no node's force "
+                      "imbalance exceeds this [pN].",
+                      Patterns::Double(0.));
+    prm.add_parameter("Max iterations",
+                      max_iterations,
+                      "L-BFGS iterations allowed per force step before the "
+                      "run stops.",
+                      Patterns::Integer(1));
+    prm.leave_subsection();
+  }
+
+  void
+  StretchingParameters::validate(const Parameters &) const
+  {
+    if (!(attached_fraction > 0.))
+      throw InputError("Stretching/Attached area fraction",
+                       to_text(attached_fraction),
+                       "it must be > 0: the beads must hold some membrane.");
+    require_positive("Stretching/Residual tolerance", tolerance, " pN");
+  }
+
+  StretchingExperiment::StretchingExperiment(
+    const std::string          &name,
+    const Parameters           &parameters,
+    const StretchingParameters &stretching,
+    const ParameterHandler     &prm,
+    const MPI_Comm              communicator)
+    : Experiment(name, parameters, prm, communicator)
+    , stretching(stretching)
   {}
 
   Vector<double>
-  StretchingExperiment::bead_forces(const Membrane &membrane) const
+  StretchingExperiment::bead_forces() const
   {
-    const Vector<double>     &X     = membrane.reference_positions();
-    const auto               &nodes = membrane.nodes();
-    const std::vector<double> areas = membrane.nodal_areas(X);
+    const Vector<double>     &X     = membrane->reference_positions();
+    const auto               &nodes = membrane->nodes();
+    const std::vector<double> areas = membrane->nodal_areas(X);
     const double total = std::accumulate(areas.begin(), areas.end(), 0.);
 
     // Nodes ordered by x; each patch takes nodes from its end until it
@@ -39,7 +85,7 @@ namespace rbc_ifem
                 return X[nodes[a][0]] < X[nodes[b][0]];
               });
     Vector<double> f(X.size());
-    const double   wanted = parameters.stretching.attached_fraction * total;
+    const double   wanted = stretching.attached_fraction * total;
     for (const int side : {-1, 1})
       {
         std::vector<unsigned int> patch;
@@ -58,39 +104,37 @@ namespace rbc_ifem
   }
 
   void
-  StretchingExperiment::run(const ParameterHandler &prm)
+  StretchingExperiment::setup()
   {
-    const StretchingParameters &s = parameters.stretching;
-    pcout << "rbc-ifem: experiment 'stretching' (" << parameters.membrane.law
+    pcout << "  " << parameters.membrane.law
           << ", G = " << parameters.membrane.shear_modulus
           << " pN/µm, K = " << parameters.membrane.area_dilation_modulus
-          << " pN/µm, κ = " << parameters.membrane.bending_modulus << " pN µm)"
+          << " pN/µm, κ = " << parameters.membrane.bending_modulus << " pN µm"
           << std::endl;
     if (Utilities::MPI::this_mpi_process(communicator) != 0)
       return;
-
-    TimerOutput         timer(MPI_COMM_SELF,
-                      pcout,
-                      TimerOutput::never,
-                      TimerOutput::wall_times);
-    Triangulation<2, 3> surface;
     create_cell_surface(surface,
-                        EvansFungShape::named(parameters.cells.shape,
-                                              parameters.cells.diameter),
+                        EvansFungShape::of(parameters.cells),
                         CellPlacement{Point<3>(), Tensor<1, 3>({0., 0., 1.})},
                         parameters.cells.surface_refinements);
-    const Membrane       membrane(surface, parameters.membrane);
-    const Vector<double> unit_force = bead_forces(membrane);
-    Vector<double>       x(membrane.reference_positions());
+    membrane = std::make_unique<Membrane>(surface, parameters.membrane);
     pcout << "  membrane: " << surface.n_active_cells() << " cells, "
-          << membrane.get_dof_handler().n_dofs() << " DoFs; area "
-          << membrane.reference_area() << " µm², volume "
-          << membrane.reference_volume() << " µm³" << std::endl;
+          << membrane->get_dof_handler().n_dofs() << " DoFs; area "
+          << membrane->reference_area() << " µm², volume "
+          << membrane->reference_volume() << " µm³" << std::endl;
+  }
 
-    std::ostringstream table;
-    table
-      << "force,axial_diameter,transverse_diameter,area,volume,iterations,residual\n"
-      << std::setprecision(10);
+  void
+  StretchingExperiment::execute()
+  {
+    if (Utilities::MPI::this_mpi_process(communicator) != 0)
+      return;
+    const StretchingParameters &s          = stretching;
+    const Vector<double>        unit_force = bead_forces();
+    Vector<double>              x(membrane->reference_positions());
+
+    CsvTable table(
+      "force,axial_diameter,transverse_diameter,area,volume,iterations,residual");
     std::vector<std::pair<double, std::string>> shapes;
     std::vector<Vector<double>>                 equilibria;
     for (unsigned int step = 0; step <= s.n_force_steps; ++step)
@@ -102,53 +146,46 @@ namespace rbc_ifem
         {
           TimerOutput::Scope scope(timer, "equilibrium");
           report =
-            find_equilibrium(membrane, f, x, s.tolerance, s.max_iterations);
+            find_equilibrium(*membrane, f, x, s.tolerance, s.max_iterations);
         }
         double x_min = 1e300, x_max = -1e300, y_min = 1e300, y_max = -1e300;
-        for (const auto &dofs : membrane.nodes())
+        for (const auto &dofs : membrane->nodes())
           {
             x_min = std::min(x_min, x[dofs[0]]);
             x_max = std::max(x_max, x[dofs[0]]);
             y_min = std::min(y_min, x[dofs[1]]);
             y_max = std::max(y_max, x[dofs[1]]);
           }
-        const double area = membrane.area(x), volume = membrane.volume(x);
+        const double area = membrane->area(x), volume = membrane->volume(x);
         pcout << "  F = " << std::setw(6) << force << " pN: " << std::setw(5)
               << report.iterations << " L-BFGS iterations, residual "
               << report.residual << " pN; axial " << x_max - x_min
               << " µm, transverse " << y_max - y_min << " µm, area "
-              << area / membrane.reference_area() << " A0, volume "
-              << volume / membrane.reference_volume() << " V0" << std::endl;
-        table << force << ',' << x_max - x_min << ',' << y_max - y_min << ','
-              << area << ',' << volume << ',' << report.iterations << ','
-              << report.residual << '\n';
+              << area / membrane->reference_area() << " A0, volume "
+              << volume / membrane->reference_volume() << " V0" << std::endl;
+        table.add(force,
+                  x_max - x_min,
+                  y_max - y_min,
+                  area,
+                  volume,
+                  report.iterations,
+                  report.residual);
         equilibria.push_back(x);
         shapes.emplace_back(force,
                             "stretch_" + Utilities::int_to_string(step, 3));
       }
 
-    // Written only now: a failed equilibrium leaves nothing behind.
+    // Written only now: a failed equilibrium leaves no table or shape.
     const std::string &directory = parameters.output_directory;
-    create_output_directory(directory, MPI_COMM_SELF);
     {
       TimerOutput::Scope scope(timer, "output");
       for (unsigned int k = 0; k < shapes.size(); ++k)
         {
-          membrane.write_vtu(equilibria[k], directory, shapes[k].second);
+          membrane->write_vtu(equilibria[k], directory, shapes[k].second);
           shapes[k].second += ".vtu";
         }
     }
     write_pvd(directory, "stretch", shapes, MPI_COMM_SELF);
-    write_file_atomically(directory + "/stretch.csv",
-                          [&](std::ostream &out) { out << table.str(); });
-    write_file_atomically(directory + "/parameters.prm",
-                          [&](std::ostream &out) {
-                            prm.print_parameters(out, ParameterHandler::PRM);
-                          });
-    write_timing(timer, directory, MPI_COMM_SELF);
-    pcout
-      << "  wrote " << directory
-      << "/: stretch.csv, stretch.pvd (+ stretch_*.vtu), parameters.prm, timing.csv"
-      << std::endl;
+    table.write(directory + "/stretch.csv");
   }
 } // namespace rbc_ifem

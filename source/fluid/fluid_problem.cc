@@ -144,7 +144,7 @@ namespace rbc_ifem
     TimerOutput::Scope scope(timer, "fluid: setup");
     setup_dofs();
     setup_matrices();
-    if (parameters.model == "Stokes")
+    if (parameters.model == FluidModel::stokes)
       {
         // The Stokes operator does not change: assemble it and its
         // preconditioner once.
@@ -218,7 +218,7 @@ namespace rbc_ifem
     // the convective term of Navier-Stokes does. Leaving those couplings
     // out in Stokes mode makes the velocity block, and every AMG and
     // matrix-vector product on it, three times smaller.
-    const bool navier_stokes = parameters.model == "Navier-Stokes";
+    const bool navier_stokes = parameters.model == FluidModel::navier_stokes;
     reinit(system_matrix, [&](unsigned int c, unsigned int d) {
       return (c < 3 && d < 3) ? (c == d || navier_stokes) : (c < 3 || d < 3);
     });
@@ -323,7 +323,7 @@ namespace rbc_ifem
   {
     TimerOutput::Scope scope(timer, "fluid: preconditioner");
     TrilinosWrappers::PreconditionAMG::AdditionalData amg_data;
-    amg_data.elliptic              = parameters.model == "Stokes";
+    amg_data.elliptic              = parameters.model == FluidModel::stokes;
     amg_data.higher_order_elements = true;
     amg_data.smoother_sweeps       = 2;
     amg_data.aggregation_threshold = 0.02;
@@ -455,7 +455,7 @@ namespace rbc_ifem
       current = guess;
     }
 
-    const bool navier_stokes = parameters.model == "Navier-Stokes";
+    const bool navier_stokes = parameters.model == FluidModel::navier_stokes;
     StepReport report;
     const auto check_finite = [&](const double r) {
       if (!std::isfinite(r))
@@ -510,7 +510,7 @@ namespace rbc_ifem
     if (new_time_step == time_step)
       return;
     time_step = new_time_step;
-    if (parameters.model == "Stokes")
+    if (parameters.model == FluidModel::stokes)
       {
         assemble_jacobian(false);
         build_preconditioner();

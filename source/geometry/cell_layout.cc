@@ -27,21 +27,26 @@ namespace rbc_ifem
     , geometry(geometry)
     , axis(cell_parameters.axis)
   {
-    const EvansFungShape shape =
-      EvansFungShape::named(cell_parameters.shape, cell_parameters.diameter);
-    const CellPlacement reference{Point<3>(), axis};
-    const Tensor<1, 3>  e_x{{1., 0., 0.}};
+    if (cell_parameters.diameter >= 2. * geometry.capillary_radius)
+      throw InputError("Cells/Diameter",
+                       to_text(cell_parameters.diameter),
+                       "the cell must be smaller than the capillary diameter "
+                       "2 x Geometry/Capillary radius = " +
+                         to_text(2. * geometry.capillary_radius) + " µm.");
+    const EvansFungShape shape = EvansFungShape::of(cell_parameters);
+    const CellPlacement  reference{Point<3>(), axis};
+    const Tensor<1, 3>   e_x{{1., 0., 0.}};
 
     // The shape is centrally symmetric, so its extent along +x and -x agree.
     // It also lies inside the ball of radius R about its centre, so a cell on
     // the axis clears the wall in any orientation once its diameter is
-    // smaller than the capillary's (CellParameters::validate()).
+    // smaller than the capillary's (checked above).
     length_of_cell = 2. * shape.extent(reference, e_x);
 
     if (layout.n_cells > max_cells())
       {
         const std::string what =
-          layout.kind == "clustered" ?
+          layout.kind == LayoutKind::clustered ?
             "a clustered group of " + std::to_string(layout.n_cells) +
               " cells is " +
               format(layout.n_cells * length_of_cell +
@@ -60,18 +65,30 @@ namespace rbc_ifem
                          what);
       }
 
-    if (layout.kind == "uniform")
-      place_uniform();
-    else if (layout.kind == "random")
-      place_random();
-    else
-      place_clustered();
+    switch (layout.kind)
+      {
+        case LayoutKind::uniform:
+          place_uniform();
+          break;
+        case LayoutKind::random:
+          place_random();
+          break;
+        case LayoutKind::clustered:
+          place_clustered();
+          break;
+      }
   }
 
   const std::vector<CellPlacement> &
   CellLayout::placements() const
   {
     return cells;
+  }
+
+  const LayoutParameters &
+  CellLayout::parameters() const
+  {
+    return layout;
   }
 
   double

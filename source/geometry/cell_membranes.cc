@@ -1,7 +1,6 @@
 #include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/geometry/cell_membranes.h>
 
-#include <iomanip>
 
 namespace rbc_ifem
 {
@@ -70,16 +69,17 @@ namespace rbc_ifem
     return points;
   }
 
-  void
-  CellMembranes::write_table(std::ostream &out) const
+  CsvTable
+  CellMembranes::table() const
   {
-    out << "cell,x,y,z,area,volume\n" << std::setprecision(10);
+    CsvTable table("cell,x,y,z,area,volume");
     for (unsigned int i = 0; i < membrane_measures.size(); ++i)
       {
         const SurfaceMeasures &m = membrane_measures[i];
-        out << i << ',' << m.centroid[0] << ',' << m.centroid[1] << ','
-            << m.centroid[2] << ',' << m.area << ',' << m.volume << '\n';
+        table.add(
+          i, m.centroid[0], m.centroid[1], m.centroid[2], m.area, m.volume);
       }
+    return table;
   }
 
   Clearance

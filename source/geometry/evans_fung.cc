@@ -14,11 +14,11 @@ namespace rbc_ifem
   {}
 
   EvansFungShape
-  EvansFungShape::named(const std::string &name, const double diameter)
+  EvansFungShape::of(const CellParameters &cells)
   {
-    Assert(name == "biconcave" || name == "sphere",
-           ExcMessage("unknown shape " + name));
-    return EvansFungShape(diameter, name == "sphere" ? sphere : red_cell);
+    return EvansFungShape(cells.diameter,
+                          cells.shape == ReferenceShape::sphere ? sphere :
+                                                                  red_cell);
   }
 
   double

@@ -37,58 +37,44 @@ namespace rbc_ifem
   FlowDomain::capillary(const Parameters &parameters)
   {
     FlowDomain domain;
-    domain.kind  = Kind::capillary;
+    domain.name  = "the capillary";
     domain.drive = FlowDrive::capillary(parameters.fluid, parameters.geometry);
     domain.placements =
       CellLayout(parameters.layout, parameters.geometry, parameters.cells)
         .placements();
+    domain.create_mesh = [geometry = parameters.geometry,
+                          refinements =
+                            parameters.mesh.fluid_global_refinements](
+                           Triangulation<3> &triangulation) {
+      create_fluid_mesh(triangulation, geometry, refinements);
+    };
+    domain.velocity_scale  = std::abs(parameters.fluid.inlet_mean_speed);
+    domain.velocity_symbol = "ū";
+    domain.length_scale    = 2. * parameters.geometry.capillary_radius;
+    domain.length_symbol   = "2R";
     return domain;
   }
 
   FlowDomain
-  FlowDomain::shear_box(const Parameters &parameters)
+  FlowDomain::shear_box(const Tensor<1, 3> &box,
+                        const double        shear_rate,
+                        const Parameters   &parameters)
   {
     FlowDomain domain;
-    domain.kind       = Kind::shear_box;
-    domain.shear_rate = parameters.shear.shear_rate;
-    domain.drive      = FlowDrive::shear(domain.shear_rate);
-    domain.placements = {CellPlacement{Point<3>(), parameters.cells.axis}};
+    domain.name        = "the shear box";
+    domain.drive       = FlowDrive::shear(shear_rate);
+    domain.placements  = {CellPlacement{Point<3>(), parameters.cells.axis}};
+    domain.create_mesh = [box,
+                          cell_size = parameters.cells.diameter,
+                          refinements =
+                            parameters.mesh.fluid_global_refinements](
+                           Triangulation<3> &triangulation) {
+      create_shear_box_mesh(triangulation, box, cell_size, refinements);
+    };
+    domain.velocity_scale  = shear_rate * parameters.cells.diameter / 2.;
+    domain.velocity_symbol = "γ̇ a";
+    domain.length_scale    = parameters.cells.diameter / 2.;
+    domain.length_symbol   = "a";
     return domain;
-  }
-
-  void
-  FlowDomain::create_mesh(Triangulation<3> &triangulation,
-                          const Parameters &parameters) const
-  {
-    if (kind == Kind::capillary)
-      create_fluid_mesh(triangulation,
-                        parameters.geometry,
-                        parameters.mesh.fluid_global_refinements);
-    else
-      create_shear_box_mesh(triangulation,
-                            parameters.shear.box,
-                            parameters.cells.diameter,
-                            parameters.mesh.fluid_global_refinements);
-  }
-
-  double
-  FlowDomain::velocity_scale(const Parameters &parameters) const
-  {
-    return kind == Kind::capillary ?
-             std::abs(parameters.fluid.inlet_mean_speed) :
-             shear_rate * parameters.cells.diameter / 2.;
-  }
-
-  double
-  FlowDomain::length_scale(const Parameters &parameters) const
-  {
-    return kind == Kind::capillary ? 2. * parameters.geometry.capillary_radius :
-                                     parameters.cells.diameter / 2.;
-  }
-
-  std::string
-  FlowDomain::name() const
-  {
-    return kind == Kind::capillary ? "the capillary" : "the shear box";
   }
 } // namespace rbc_ifem

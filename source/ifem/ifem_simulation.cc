@@ -1,8 +1,10 @@
 #include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/output.h>
 #include <rbc_ifem/base/solver_failure.h>
+#include <rbc_ifem/coupling/membrane_forces.h>
+#include <rbc_ifem/coupling/time_step_limit.h>
 #include <rbc_ifem/diffusion/co_diffusion.h>
-#include <rbc_ifem/experiments/diffusion_experiment.h>
+#include <rbc_ifem/diffusion/uptake.h>
 #include <rbc_ifem/geometry/capillary_mesh.h>
 #include <rbc_ifem/ifem/ifem_simulation.h>
 
@@ -23,18 +25,6 @@ namespace rbc_ifem
 {
   namespace
   {
-    /// One CSV row from numbers, at full precision.
-    template <typename... Values>
-    std::string
-    csv_row(const Values &...values)
-    {
-      std::ostringstream row;
-      row << std::setprecision(10);
-      const char *separator = "";
-      ((row << separator << values, separator = ","), ...);
-      return row.str();
-    }
-
     /// Everything in a checkpoint: the run's record, the fluid, the membranes.
     struct Checkpoint
     {
@@ -52,29 +42,15 @@ namespace rbc_ifem
     };
   } // namespace
 
-  CouplingTimeStepLimit::CouplingTimeStepLimit(const double viscosity,
-                                               const MembraneParameters &m,
-                                               const double point_spacing,
-                                               const double mesh_size)
-  {
-    const double q = numbers::PI / std::max(point_spacing, 0.5 * mesh_size);
-    in_plane =
-      8. * viscosity / ((m.area_dilation_modulus + m.shear_modulus) * q);
-    bending = 8. * viscosity / (m.bending_modulus * q * q * q);
-    limit   = std::min(in_plane, bending);
-  }
-
-
   IFEMSimulation::IFEMSimulation(const Parameters &parameters,
+                                 const FlowDomain &domain,
                                  const MPI_Comm    communicator,
-                                 const FlowDomain &domain)
+                                 TimerOutput      &timer)
     : parameters(parameters)
     , communicator(communicator)
     , domain(domain)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
-    // Rank 0's own clock: a TimerOutput on the world communicator warns at
-    // length when an exception unwinds through it.
-    , timer(MPI_COMM_SELF, pcout, TimerOutput::never, TimerOutput::wall_times)
+    , timer(timer)
     , triangulation(communicator,
                     Triangulation<3>::none,
                     false,
@@ -86,8 +62,29 @@ namespace rbc_ifem
             timer)
     , cells(domain.placements, parameters.cells, parameters.membrane)
   {
+    if (parameters.immersed.tether_stiffness > 0.)
+      cells.add_force(
+        std::make_unique<Tether>(cells.membranes(),
+                                 parameters.immersed.tether_stiffness));
+
+    record.flow.set_header(
+      "time,flow_rate,pressure_drop,max_velocity,divergence_l2,"
+      "frame_velocity,newton_iterations,linear_iterations,held_force_x,"
+      "held_force_y,held_force_z");
+    record.cells.set_header(
+      "time,cell,x,y,z,area,volume,axial_length,max_radius,deformation_index,"
+      "frame_x,volume_change,area_change,taylor_deformation,inclination");
+    std::string dm_header = "time,dm_total";
+    for (unsigned int c = 0; c < cells.size(); ++c)
+      dm_header += ",dm_cell_" + std::to_string(c);
+    record.dm.set_header(dm_header);
     record.cell_files.resize(cells.size());
-    cells.hold(parameters.immersed.tether_stiffness);
+  }
+
+  void
+  IFEMSimulation::add_observer(RunObserver &observer)
+  {
+    observers.push_back(&observer);
   }
 
   void
@@ -95,7 +92,7 @@ namespace rbc_ifem
   {
     {
       TimerOutput::Scope scope(timer, "fluid mesh");
-      domain.create_mesh(triangulation, parameters);
+      domain.create_mesh(triangulation);
       refine_near_points(triangulation,
                          cells.points(),
                          parameters.mesh.band_width,
@@ -111,32 +108,43 @@ namespace rbc_ifem
       }
     catch (const std::runtime_error &e)
       {
-        throw InputError("the cells do not fit into " + domain.name() + ": " +
+        throw InputError("the cells do not fit into " + domain.name + ": " +
                          e.what());
       }
     mesh_size = coupling->mesh_size_at_points();
     load.reinit(fluid.owned_partitioning(), communicator);
+
+    pcout << "  fluid mesh: " << triangulation.n_active_cells() << " cells, "
+          << fluid.get_dof_handler().n_dofs() << " DoFs" << std::endl;
+    report_startup();
+    if (parameters.immersed.resume)
+      {
+        read_checkpoint();
+        pcout << "  resumed from the checkpoint at step " << record.step
+              << ", t = " << record.time << " s" << std::endl;
+      }
   }
 
   void
   IFEMSimulation::report_startup() const
   {
-    const FluidParameters    &f      = parameters.fluid;
-    const MembraneParameters &m      = parameters.membrane;
-    const double              speed  = domain.velocity_scale(parameters);
-    const double              length = domain.length_scale(parameters);
-    const bool                box = domain.kind == FlowDomain::Kind::shear_box;
-    const double              spacing = cells.point_spacing();
+    const FluidParameters      &f       = parameters.fluid;
+    const MembraneParameters   &m       = parameters.membrane;
+    const double                speed   = domain.velocity_scale;
+    const double                length  = domain.length_scale;
+    const double                spacing = cells.point_spacing();
     const CouplingTimeStepLimit stable(f.viscosity, m, spacing, mesh_size);
     const double                stable_step = stable.limit;
 
     pcout << "  cells: " << cells.size() << ", " << cells.n_points()
           << " membrane points, spacing up to " << spacing
           << " µm; fluid mesh size at the cells h = " << mesh_size << " µm\n"
-          << "  Reynolds number " << (box ? "ρ γ̇ a² / μ = " : "ρ ū 2R / μ = ")
-          << f.density * speed * length / f.viscosity << "\n"
-          << "  capillary number " << (box ? "μ a γ̇ / G = " : "μ ū / G = ")
-          << f.viscosity * speed / m.shear_modulus << "\n"
+          << "  Reynolds number ρ U L / μ = "
+          << f.density * speed * length / f.viscosity
+          << ", capillary number μ U / G = "
+          << f.viscosity * speed / m.shear_modulus
+          << " (U = " << domain.velocity_symbol
+          << ", L = " << domain.length_symbol << ")\n"
           << "  explicit-coupling time step limit ≈ " << stable_step
           << " s (in-plane " << stable.in_plane << " s, bending "
           << stable.bending
@@ -243,8 +251,10 @@ namespace rbc_ifem
     for (const auto &surface : surfaces)
       pointers.push_back(surface.get());
     const std::string &directory = parameters.output_directory;
-    const LayoutUptake uptake    = rbc_ifem::solve_uptake(
-      parameters,
+    const Uptake       uptake    = rbc_ifem::solve_uptake(
+      parameters.geometry,
+      parameters.mesh,
+      parameters.diffusion,
       pointers,
       cells.surface_mapping(),
       parameters.mesh.diffusion_band_refinements,
@@ -261,11 +271,11 @@ namespace rbc_ifem
                   record.flux_files,
                   communicator);
       });
-    std::ostringstream row;
-    row << csv_row(record.time, uptake.dm_total);
+    CsvRow row;
+    row << record.time << uptake.dm_total;
     for (const double dm : uptake.dm_cells)
-      row << ',' << std::setprecision(10) << dm;
-    record.dm_rows.push_back(row.str());
+      row << dm;
+    record.dm.add_row(row.str());
     return uptake.dm_total;
   }
 
@@ -274,17 +284,17 @@ namespace rbc_ifem
   {
     const FlowMeasures m    = fluid.measure();
     const Tensor<1, 3> held = cells.held_force();
-    record.flow_rows.push_back(csv_row(record.time,
-                                       m.flow_rate,
-                                       m.pressure_drop,
-                                       m.max_velocity,
-                                       m.divergence_l2,
-                                       fluid.get_frame_velocity(),
-                                       report.newton_iterations,
-                                       report.linear_iterations,
-                                       held[0],
-                                       held[1],
-                                       held[2]));
+    record.flow.add(record.time,
+                    m.flow_rate,
+                    m.pressure_drop,
+                    m.max_velocity,
+                    m.divergence_l2,
+                    fluid.get_frame_velocity(),
+                    report.newton_iterations,
+                    report.linear_iterations,
+                    held[0],
+                    held[1],
+                    held[2]);
   }
 
   std::vector<CellShape>
@@ -294,26 +304,24 @@ namespace rbc_ifem
     for (unsigned int c = 0; c < shapes.size(); ++c)
       {
         const CellShape &s = shapes[c];
-        record.cell_rows.push_back(
-          csv_row(record.time,
-                  c,
-                  s.centroid[0] + record.frame_offset,
-                  s.centroid[1],
-                  s.centroid[2],
-                  s.area,
-                  s.volume,
-                  s.axial_length,
-                  s.max_radius,
-                  s.deformation_index,
-                  s.centroid[0],
-                  s.volume / cells.reference_volume(c) - 1.,
-                  s.area / cells.reference_area(c) - 1.,
-                  s.taylor_deformation,
-                  s.inclination));
+        record.cells.add(record.time,
+                         c,
+                         s.centroid[0] + record.frame_offset,
+                         s.centroid[1],
+                         s.centroid[2],
+                         s.area,
+                         s.volume,
+                         s.axial_length,
+                         s.max_radius,
+                         s.deformation_index,
+                         s.centroid[0],
+                         s.volume / cells.reference_volume(c) - 1.,
+                         s.area / cells.reference_area(c) - 1.,
+                         s.taylor_deformation,
+                         s.inclination);
       }
-    if (domain.kind == FlowDomain::Kind::shear_box)
-      record.shear_history.push_back(
-        {{record.time, shapes[0].taylor_deformation, shapes[0].inclination}});
+    for (RunObserver *observer : observers)
+      observer->record(record.time, shapes);
     return shapes;
   }
 
@@ -346,40 +354,12 @@ namespace rbc_ifem
     if (Utilities::MPI::this_mpi_process(communicator) != 0)
       return;
     const std::string &directory = parameters.output_directory;
-    const auto         write     = [&](const std::string              &name,
-                           const std::string              &header,
-                           const std::vector<std::string> &rows) {
-      write_file_atomically(directory + "/" + name, [&](std::ostream &out) {
-        out << header << '\n';
-        for (const std::string &row : rows)
-          out << row << '\n';
-      });
-    };
-    write(
-      "flow.csv",
-      "time,flow_rate,pressure_drop,max_velocity,divergence_l2,frame_velocity,"
-      "newton_iterations,linear_iterations,held_force_x,held_force_y,held_force_z",
-      record.flow_rows);
-    write(
-      "cells.csv",
-      "time,cell,x,y,z,area,volume,axial_length,max_radius,deformation_index,frame_x,"
-      "volume_change,area_change,taylor_deformation,inclination",
-      record.cell_rows);
-    if (domain.kind == FlowDomain::Kind::shear_box)
-      {
-        std::vector<std::string> rows;
-        for (const auto &[time, deformation, inclination] :
-             record.shear_history)
-          rows.push_back(csv_row(time, deformation, inclination / numbers::PI));
-        write("shear.csv", "time,taylor_deformation,inclination_over_pi", rows);
-      }
+    record.flow.write(directory + "/flow.csv");
+    record.cells.write(directory + "/cells.csv");
     if (parameters.immersed.diffusion_interval > 0)
-      {
-        std::string header = "time,dm_total";
-        for (unsigned int c = 0; c < cells.size(); ++c)
-          header += ",dm_cell_" + std::to_string(c);
-        write("dm.csv", header, record.dm_rows);
-      }
+      record.dm.write(directory + "/dm.csv");
+    for (const RunObserver *observer : observers)
+      observer->write_tables(directory);
   }
 
   void
@@ -465,43 +445,11 @@ namespace rbc_ifem
       parameters.output_directory + ".");
   }
 
-  const RunRecord &
-  IFEMSimulation::run_record() const
-  {
-    return record;
-  }
-
   void
-  IFEMSimulation::run(const ParameterHandler &prm)
+  IFEMSimulation::run()
   {
     const ImmersedParameters &immersed = parameters.immersed;
     const TimeParameters     &time     = parameters.time;
-    const bool                box = domain.kind == FlowDomain::Kind::shear_box;
-    pcout << "rbc-ifem: "
-          << (box ? "a capsule in the shear box" :
-                    "experiment 'flow' with immersed cells")
-          << " (" << parameters.fluid.model << ") on "
-          << Utilities::MPI::n_mpi_processes(communicator) << " rank(s)"
-          << std::endl;
-    setup();
-    pcout << "  fluid mesh: " << triangulation.n_active_cells() << " cells, "
-          << fluid.get_dof_handler().n_dofs() << " DoFs" << std::endl;
-    report_startup();
-    if (immersed.resume)
-      {
-        read_checkpoint();
-        pcout << "  resumed from the checkpoint at step " << record.step
-              << ", t = " << record.time << " s" << std::endl;
-      }
-
-    const std::string &directory = parameters.output_directory;
-    create_output_directory(directory, communicator);
-    if (Utilities::MPI::this_mpi_process(communicator) == 0)
-      write_file_atomically(directory + "/parameters.prm",
-                            [&](std::ostream &out) {
-                              prm.print_parameters(out, ParameterHandler::PRM);
-                            });
-
     const auto due = [](const unsigned int step, const unsigned int interval) {
       return interval > 0 && step % interval == 0;
     };
@@ -538,12 +486,13 @@ namespace rbc_ifem
           progress << ", DM "
                    << solve_uptake(step / immersed.diffusion_interval)
                    << " µm³/(s Torr)";
-        const CellShape shape = (output ? record_shapes() : cells.shapes())[0];
+        const std::vector<CellShape> shapes =
+          output ? record_shapes() : cells.shapes();
         progress << "; cell 0: volume change "
-                 << shape.volume / cells.reference_volume(0) - 1.
-                 << ", deformation index " << shape.deformation_index;
-        if (box)
-          progress << ", Taylor deformation " << shape.taylor_deformation;
+                 << shapes[0].volume / cells.reference_volume(0) - 1.
+                 << ", deformation index " << shapes[0].deformation_index;
+        for (const RunObserver *observer : observers)
+          progress << observer->progress(shapes);
         if (output)
           {
             write_fields();
@@ -555,21 +504,10 @@ namespace rbc_ifem
           write_checkpoint();
       }
     write_tables();
-    write_timing(timer, directory, communicator);
     const unsigned int n_run = record.step - first_step;
     pcout << "  " << n_run << " steps in " << clock.wall_time() << " s, "
           << clock.wall_time() / std::max(1u, n_run) << " s per step"
           << std::endl;
     timer.print_summary();
-    pcout << "  wrote " << directory
-          << "/: parameters.prm, flow.csv, cells.csv, "
-          << (box ? "shear.csv, " : "")
-          << (immersed.diffusion_interval > 0 ?
-                "dm.csv, diffusion.pvd, diffusion_membranes.pvd, " :
-                "")
-          << (immersed.checkpoint_interval > 0 ? "checkpoint.bin, " : "")
-          << "flow.pvd, cell_*.pvd, timing.csv" << std::endl;
-    pcout << "  peak memory: " << peak_memory_mb(communicator)
-          << " MB (largest over ranks)" << std::endl;
   }
 } // namespace rbc_ifem

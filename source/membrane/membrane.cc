@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <map>
+#include <variant>
 
 // deal.II 9.4 knows the product types of Sacado's DFad, not of the
 // fixed-length SFad the membrane forces use: declare them, so that Tensor
@@ -67,38 +68,12 @@ namespace rbc_ifem
     std::vector<double>       mass;
   };
 
-  namespace
-  {
-    /**
-     * W(I1, J) [pN/µm] in terms of I1 = λ1² + λ2² and J = λ1 λ2, the
-     * invariants of the surface Cauchy-Green tensor C = G⁻¹g:
-     * tr C = I1, det C = J².
-     */
-    template <typename Number>
-    Number
-    strain_energy_density(const MembraneParameters &p,
-                          const Number             &I1,
-                          const Number             &J)
-    {
-      const double G = p.shear_modulus, K = p.area_dilation_modulus;
-      if (p.law == "Skalak")
-        {
-          const double C   = (K / G - 1.) / 2.;
-          const Number I1s = I1 - 2.;
-          const Number I2s = J * J - 1.;
-          return G / 4. * (I1s * I1s + 2. * I1s - 2. * I2s + C * I2s * I2s);
-        }
-      // neo-Hookean: the incompressible thin-shell form, λ3 = 1/(λ1 λ2),
-      // plus the area term; C1 = G/2 and C2 = K - 3G give the small-strain
-      // moduli G and K.
-      const double C1 = G / 2., C2 = K - 3. * G;
-      return C1 * (I1 + 1. / (J * J) - 3.) + C2 / 2. * (J - 1.) * (J - 1.);
-    }
-  } // namespace
-
   Membrane::Membrane(const Triangulation<2, 3> &reference_mesh,
                      const MembraneParameters  &parameters)
     : parameters(parameters)
+    , elastic_law(make_elastic_law(parameters.law,
+                                   parameters.shear_modulus,
+                                   parameters.area_dilation_modulus))
     , scalar_fe(parameters.degree)
     , fe(scalar_fe, 3)
     , dof_handler(reference_mesh)
@@ -212,9 +187,10 @@ namespace rbc_ifem
     return local;
   }
 
-  template <typename Number>
+  template <typename Number, typename Law>
   Membrane::CellTerms<Number>
-  Membrane::cell_terms(const unsigned int         cell,
+  Membrane::cell_terms(const Law                 &law,
+                       const unsigned int         cell,
                        const std::vector<Number> &x) const
   {
     using std::sqrt;
@@ -250,8 +226,8 @@ namespace rbc_ifem
           for (unsigned int beta = 0; beta < 2; ++beta)
             I1 += G_inverse[alpha][beta] * g[alpha][beta];
         const Number J = jacobian / reference_jacobian[cell][q];
-        terms.in_plane += strain_energy_density(parameters, I1, J) *
-                          reference_jacobian[cell][q] * w;
+        terms.in_plane +=
+          law.energy_density(I1, J) * reference_jacobian[cell][q] * w;
 
         const Number               dA = jacobian * w;
         const Tensor<1, 3, Number> normal_dA =
@@ -282,21 +258,31 @@ namespace rbc_ifem
     sums.laplacian.resize(n_nodes);
     sums.normal.resize(n_nodes);
     sums.mass.resize(n_nodes);
-    for (unsigned int c = 0; c < cell_dofs.size(); ++c)
-      {
-        const CellTerms<double> terms = cell_terms(c, local_positions(c, x));
-        sums.in_plane += terms.in_plane;
-        sums.area += terms.area;
-        sums.volume += terms.volume;
-        for (unsigned int a = 0; a < cell_nodes[c].size(); ++a)
-          {
-            const unsigned int i = cell_nodes[c][a];
-            sums.laplacian[i] += terms.laplacian[a];
-            sums.normal[i] += terms.normal[a];
-            sums.mass[i] += terms.mass[a];
-          }
-      }
+    // The law is chosen once per call, outside the loop over the cells.
+    std::visit(
+      [&](const auto &law) {
+        for (unsigned int c = 0; c < cell_dofs.size(); ++c)
+          add_cell_terms(c, cell_terms(law, c, local_positions(c, x)), sums);
+      },
+      elastic_law);
     return sums;
+  }
+
+  void
+  Membrane::add_cell_terms(const unsigned int       c,
+                           const CellTerms<double> &terms,
+                           Sums                    &sums) const
+  {
+    sums.in_plane += terms.in_plane;
+    sums.area += terms.area;
+    sums.volume += terms.volume;
+    for (unsigned int a = 0; a < cell_nodes[c].size(); ++a)
+      {
+        const unsigned int i = cell_nodes[c][a];
+        sums.laplacian[i] += terms.laplacian[a];
+        sums.normal[i] += terms.normal[a];
+        sums.mass[i] += terms.mass[a];
+      }
   }
 
   MembraneEnergy
@@ -356,7 +342,7 @@ namespace rbc_ifem
     // (the cell's DoFs) is known at compile time for the degrees in use:
     // no heap allocation per operation, several times faster than DFad.
     forces                             = 0.;
-    const auto subtract_cell_gradients = [&](auto ad_number) {
+    const auto subtract_cell_gradients = [&](auto ad_number, const auto &law) {
       using ADNumber = decltype(ad_number);
       for (unsigned int c = 0; c < cell_dofs.size(); ++c)
         {
@@ -364,7 +350,7 @@ namespace rbc_ifem
           std::vector<ADNumber>     local(values.size());
           for (unsigned int k = 0; k < values.size(); ++k)
             local[k] = ADNumber(values.size(), k, values[k]);
-          const CellTerms<ADNumber> terms = cell_terms(c, local);
+          const CellTerms<ADNumber> terms = cell_terms(law, c, local);
           ADNumber                  phi =
             terms.in_plane + d_area * terms.area + d_volume * terms.volume;
           for (unsigned int a = 0; a < cell_nodes[c].size(); ++a)
@@ -377,12 +363,16 @@ namespace rbc_ifem
             forces[cell_dofs[c][k]] -= phi.dx(k);
         }
     };
-    if (parameters.degree == 1)
-      subtract_cell_gradients(Sacado::Fad::SFad<double, 3 * 4>());
-    else if (parameters.degree == 2)
-      subtract_cell_gradients(Sacado::Fad::SFad<double, 3 * 9>());
-    else
-      subtract_cell_gradients(Sacado::Fad::DFad<double>());
+    std::visit(
+      [&](const auto &law) {
+        if (parameters.degree == 1)
+          subtract_cell_gradients(Sacado::Fad::SFad<double, 3 * 4>(), law);
+        else if (parameters.degree == 2)
+          subtract_cell_gradients(Sacado::Fad::SFad<double, 3 * 9>(), law);
+        else
+          subtract_cell_gradients(Sacado::Fad::DFad<double>(), law);
+      },
+      elastic_law);
     return energy;
   }
 

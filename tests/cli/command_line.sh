@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Usage: command_line.sh RBC_IFEM
 #
-# The program's command line (design.md, Section 6): --help, a run with no
+# The program's command line (doc/design.md, Section 4): --help, a run with no
 # file, an unknown option, and --print-parameters, whose output must be a
 # valid .prm that runs; the parameters.prm a run writes must run again and
 # give the same cells.csv.

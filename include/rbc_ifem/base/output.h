@@ -1,8 +1,9 @@
-#ifndef rbc_ifem_output_h
-#define rbc_ifem_output_h
+#ifndef rbc_ifem_base_output_h
+#define rbc_ifem_base_output_h
 
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/timer.h>
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/grid/tria.h>
@@ -45,10 +46,31 @@ namespace rbc_ifem
             const std::vector<std::pair<double, std::string>> &records,
             const MPI_Comm                                     communicator);
 
-  /// Write @p path through @p writer, via a temporary file and a rename.
+  /**
+   * Write @p path through @p writer, via a temporary file and a rename, and
+   * note it among the files this process has written (written_files()).
+   */
   void
   write_file_atomically(const std::string                         &path,
                         const std::function<void(std::ostream &)> &writer);
+
+  /**
+   * What this process has written into @p directory, for the closing line of
+   * a run: the tables, parameter files, checkpoints and .pvd records by name
+   * (sorted), each subdirectory as "NAME/ (N files)". VTU and PVTU files are
+   * left out: the .pvd files list them, and a rank writes only its pieces.
+   */
+  std::string
+  written_files(const std::string &directory);
+
+  /**
+   * Create @p directory if needed and write @p prm there as parameters.prm,
+   * the parameters as the run uses them (rank 0).
+   */
+  void
+  write_parameters(const ParameterHandler &prm,
+                   const std::string      &directory,
+                   const MPI_Comm          communicator);
 
   /**
    * A volume mesh for ParaView: each rank writes the cells it owns, with

@@ -1,5 +1,5 @@
-#ifndef rbc_ifem_solver_failure_h
-#define rbc_ifem_solver_failure_h
+#ifndef rbc_ifem_base_solver_failure_h
+#define rbc_ifem_base_solver_failure_h
 
 #include <stdexcept>
 #include <string>

@@ -1,10 +1,12 @@
 #ifndef rbc_ifem_cell_population_h
 #define rbc_ifem_cell_population_h
 
+#include <rbc_ifem/coupling/cell_force.h>
 #include <rbc_ifem/geometry/cell_membranes.h>
 #include <rbc_ifem/geometry/cell_placement.h>
+#include <rbc_ifem/geometry/parameters.h>
 #include <rbc_ifem/membrane/membrane.h>
-#include <rbc_ifem/parameters.h>
+#include <rbc_ifem/membrane/parameters.h>
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
@@ -44,7 +46,8 @@ namespace rbc_ifem
    * (Evans-Fung) mesh, and each cell's current positions x. The membrane
    * points of the immersed coupling are the nodes of every cell, cell by
    * cell in Membrane::nodes() order; forces and velocities come and go in
-   * that order.
+   * that order. The forces on the points are the sum of the CellForce
+   * objects the population holds.
    */
   class CellPopulation
   {
@@ -63,22 +66,30 @@ namespace rbc_ifem
     points() const;
 
     /**
-     * Hold every point at its starting position X by a spring of
-     * @p stiffness k [pN/µm]: compute_forces() adds -k (x - X).
+     * Add @p force to the forces on the cells. The membranes' elasticity
+     * (MembraneElasticity) is there from the start; a Tether, say, holds
+     * the cells in place.
      */
     void
-    hold(const double stiffness);
+    add_force(std::unique_ptr<CellForce> force);
 
     /**
-     * F = -∂E/∂x at every point [pN] from each cell's energy, plus the
-     * springs of hold(); fills the per-DoF forces of every cell for output.
+     * F = -∂E/∂x at every point [pN], the sum of every CellForce at the
+     * current positions; keeps the per-DoF sums of every cell for output.
      */
     std::vector<Tensor<1, 3>>
     compute_forces();
 
-    /// The springs' total force on the cells at the last compute_forces() [pN].
+    /**
+     * The net external force on the cells at the last compute_forces()
+     * [pN]: what holds them (CellForceReport::external_force, summed).
+     */
     Tensor<1, 3>
     held_force() const;
+
+    /// Every cell's Membrane, in order: what cell forces act on.
+    const std::vector<std::unique_ptr<Membrane>> &
+    membranes() const;
 
     /// Move every point by Δt v: the last of the six steps.
     void
@@ -126,14 +137,14 @@ namespace rbc_ifem
     set_positions(const std::vector<Vector<double>> &positions);
 
   private:
-    const CellMembranes                    references;
-    const MappingQ<2, 3>                   flat_mapping;
-    std::vector<std::unique_ptr<Membrane>> membranes;
-    std::vector<Vector<double>>            x;
-    std::vector<Vector<double>>            forces;
-    unsigned int                           n_membrane_points = 0;
-    double                                 tether_stiffness  = 0.;
-    Tensor<1, 3>                           total_tether_force;
+    const CellMembranes                     references;
+    const MappingQ<2, 3>                    flat_mapping;
+    std::vector<std::unique_ptr<Membrane>>  cell_membranes;
+    std::vector<Vector<double>>             x;
+    std::vector<Vector<double>>             forces;
+    unsigned int                            n_membrane_points = 0;
+    std::vector<std::unique_ptr<CellForce>> cell_forces;
+    Tensor<1, 3>                            external_force;
   };
 } // namespace rbc_ifem
 

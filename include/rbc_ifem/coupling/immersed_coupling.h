@@ -18,7 +18,7 @@ namespace rbc_ifem
   using namespace dealii;
 
   /**
-   * The immersed coupling of membranes and plasma (design.md, "Immersed
+   * The immersed coupling of membranes and plasma (doc/design.md, "Immersed
    * coupling", steps 3 and 5): the membrane points, every node of every
    * cell, as the particles of a Particles::ParticleHandler<3> on the fluid
    * mesh, with the point's index as the particle id. The handler knows each

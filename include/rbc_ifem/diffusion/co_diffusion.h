@@ -1,7 +1,7 @@
 #ifndef rbc_ifem_co_diffusion_h
 #define rbc_ifem_co_diffusion_h
 
-#include <rbc_ifem/parameters.h>
+#include <rbc_ifem/diffusion/parameters.h>
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/timer.h>

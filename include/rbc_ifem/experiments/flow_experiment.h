@@ -1,36 +1,37 @@
-#ifndef rbc_ifem_flow_experiment_h
-#define rbc_ifem_flow_experiment_h
+#ifndef rbc_ifem_experiments_flow_experiment_h
+#define rbc_ifem_experiments_flow_experiment_h
 
+#include <rbc_ifem/experiments/experiment.h>
 #include <rbc_ifem/fluid/fluid_problem.h>
-#include <rbc_ifem/parameters.h>
 
-#include <deal.II/base/conditional_ostream.h>
-#include <deal.II/base/timer.h>
 #include <deal.II/distributed/shared_tria.h>
 
 namespace rbc_ifem
 {
   /**
-   * Experiment "flow": the plasma alone (no cells) in the capillary, for
+   * Experiment "flow" without cells: the plasma alone in the capillary, for
    * Time/Number of steps steps of Δt from rest. Writes flow.csv every step
    * (time,flow_rate,pressure_drop,max_velocity,divergence_l2, then
    * frame_velocity,newton_iterations,linear_iterations), v and p as
-   * VTU/PVTU with flow.pvd every Time/Output interval steps, timing.csv and
-   * parameters.prm, and a progress line per step.
+   * VTU/PVTU with flow.pvd every Time/Output interval steps, and a progress
+   * line per step.
    */
-  class FlowExperiment
+  class FlowExperiment : public Experiment
   {
   public:
-    FlowExperiment(const Parameters &parameters, const MPI_Comm communicator);
-
-    void
-    run(const ParameterHandler &prm);
+    FlowExperiment(const std::string      &name,
+                   const Parameters       &parameters,
+                   const ParameterHandler &prm,
+                   const MPI_Comm          communicator);
 
   private:
-    const Parameters                   parameters;
-    const MPI_Comm                     communicator;
-    ConditionalOStream                 pcout;
-    TimerOutput                        timer;
+    /// The mesh and the fluid's operators.
+    void
+    setup() override;
+    /// The time steps.
+    void
+    execute() override;
+
     parallel::shared::Triangulation<3> triangulation;
     FluidProblem                       fluid;
   };

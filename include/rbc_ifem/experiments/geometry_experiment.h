@@ -1,12 +1,10 @@
-#ifndef rbc_ifem_geometry_experiment_h
-#define rbc_ifem_geometry_experiment_h
+#ifndef rbc_ifem_experiments_geometry_experiment_h
+#define rbc_ifem_experiments_geometry_experiment_h
 
+#include <rbc_ifem/experiments/experiment.h>
 #include <rbc_ifem/geometry/cell_layout.h>
 #include <rbc_ifem/geometry/cell_membranes.h>
-#include <rbc_ifem/parameters.h>
 
-#include <deal.II/base/conditional_ostream.h>
-#include <deal.II/base/timer.h>
 #include <deal.II/distributed/shared_tria.h>
 
 namespace rbc_ifem
@@ -21,28 +19,26 @@ namespace rbc_ifem
    * Every check runs before the output directory is touched, so a bad
    * request writes nothing.
    */
-  class GeometryExperiment
+  class GeometryExperiment : public Experiment
   {
   public:
-    GeometryExperiment(const Parameters &parameters,
-                       const MPI_Comm    communicator);
-
-    /// Build and check everything, then write it (with @p prm as used).
-    void
-    run(const ParameterHandler &prm);
+    GeometryExperiment(const std::string      &name,
+                       const Parameters       &parameters,
+                       const ParameterHandler &prm,
+                       const MPI_Comm          communicator);
 
   private:
+    /// The layout, the clearance check and the meshes.
     void
-    report_membranes() const;
+    setup() override;
+    /// Write the meshes, the membranes and cells.csv.
+    void
+    execute() override;
+
+    void
+    report_membranes();
     void
     create_meshes();
-    void
-    write_output(const ParameterHandler &prm) const;
-
-    const Parameters    parameters;
-    const MPI_Comm      communicator;
-    ConditionalOStream  pcout;
-    mutable TimerOutput timer;
 
     const CellLayout    layout;
     const CellMembranes membranes;

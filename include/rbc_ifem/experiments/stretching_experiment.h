@@ -1,15 +1,32 @@
-#ifndef rbc_ifem_stretching_experiment_h
-#define rbc_ifem_stretching_experiment_h
+#ifndef rbc_ifem_experiments_stretching_experiment_h
+#define rbc_ifem_experiments_stretching_experiment_h
 
-#include <rbc_ifem/parameters.h>
+#include <rbc_ifem/experiments/experiment.h>
+#include <rbc_ifem/membrane/membrane.h>
 
-#include <deal.II/base/conditional_ostream.h>
-#include <deal.II/base/mpi.h>
+#include <deal.II/grid/tria.h>
 #include <deal.II/lac/vector.h>
+
+#include <memory>
 
 namespace rbc_ifem
 {
-  class Membrane;
+  /// The optical-tweezers experiment (subsection "Stretching").
+  struct StretchingParameters : public ExperimentParameters
+  {
+    double       max_force         = 200.; ///< [pN]
+    unsigned int n_force_steps     = 8;
+    double       attached_fraction = 0.025; ///< of the membrane area, per bead
+    double       tolerance         = 1e-3;  ///< nodal force residual [pN]
+    unsigned int max_iterations    = 20000;
+
+    void
+    add_parameters(ParameterHandler &prm) override;
+    /// Throws InputError unless the beads hold some membrane and the
+    /// tolerance is positive.
+    void
+    validate(const Parameters &parameters) const override;
+  };
 
   /**
    * Experiment "stretching": the optical-tweezers test. One cell, its disc
@@ -21,29 +38,37 @@ namespace rbc_ifem
    * equilibrium is found by find_equilibrium() from the previous one;
    * stretch.csv gets force, axial_diameter (x extent), transverse_diameter
    * (y extent), area and volume, and each equilibrium is written as
-   * stretch_NNN.vtu (stretch.pvd, with the force as its "time").
+   * stretch_NNN.vtu (stretch.pvd, with the force as its "time"), all once
+   * the last equilibrium is found.
    *
    * The membrane problem is small (a few thousand DoFs) and is solved on
    * rank 0; other ranks wait.
    */
-  class StretchingExperiment
+  class StretchingExperiment : public Experiment
   {
   public:
-    StretchingExperiment(const Parameters &parameters,
-                         const MPI_Comm    communicator);
-
-    void
-    run(const ParameterHandler &prm);
+    StretchingExperiment(const std::string          &name,
+                         const Parameters           &parameters,
+                         const StretchingParameters &stretching,
+                         const ParameterHandler     &prm,
+                         const MPI_Comm              communicator);
 
   private:
+    /// The membrane (rank 0).
+    void
+    setup() override;
+    /// The equilibria and their files (rank 0).
+    void
+    execute() override;
+
     /// The unit pulling force: +a_i/A_patch on the x DoFs of the right
     /// patch, -a_i/A_patch on the left one.
     Vector<double>
-    bead_forces(const Membrane &membrane) const;
+    bead_forces() const;
 
-    const Parameters   parameters;
-    const MPI_Comm     communicator;
-    ConditionalOStream pcout;
+    const StretchingParameters stretching;
+    Triangulation<2, 3>        surface;
+    std::unique_ptr<Membrane>  membrane;
   };
 } // namespace rbc_ifem
 

@@ -1,7 +1,8 @@
 #ifndef rbc_ifem_fluid_problem_h
 #define rbc_ifem_fluid_problem_h
 
-#include <rbc_ifem/parameters.h>
+#include <rbc_ifem/fluid/parameters.h>
+#include <rbc_ifem/geometry/parameters.h>
 
 #include <deal.II/base/function.h>
 #include <deal.II/base/timer.h>
@@ -122,8 +123,8 @@ namespace rbc_ifem
   };
 
   /**
-   * The plasma flow in the capillary lumen (design.md, "Fluid"): velocity v
-   * and pressure p in Taylor-Hood Q2-Q1 on a parallel::shared mesh from
+   * The plasma flow in the capillary lumen (doc/design.md, Section 2): velocity
+   * v and pressure p in Taylor-Hood Q2-Q1 on a parallel::shared mesh from
    * create_fluid_mesh(), with a quadratic mapping for the curved wall.
    *
    * Each time step is backward Euler for

@@ -1,7 +1,7 @@
 #ifndef rbc_ifem_capillary_mesh_h
 #define rbc_ifem_capillary_mesh_h
 
-#include <rbc_ifem/parameters.h>
+#include <rbc_ifem/geometry/parameters.h>
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/types.h>

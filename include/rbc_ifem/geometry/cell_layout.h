@@ -3,7 +3,7 @@
 
 #include <rbc_ifem/geometry/cell_placement.h>
 #include <rbc_ifem/geometry/evans_fung.h>
-#include <rbc_ifem/parameters.h>
+#include <rbc_ifem/geometry/parameters.h>
 
 #include <vector>
 
@@ -26,8 +26,8 @@ namespace rbc_ifem
   public:
     /**
      * Build the layout, or throw InputError naming the parameter if it is
-     * impossible: more cells than fit, or a cluster placed partly outside
-     * the segment.
+     * impossible: a cell as wide as the capillary, more cells than fit, or
+     * a cluster placed partly outside the segment.
      */
     CellLayout(const LayoutParameters   &layout,
                const GeometryParameters &geometry,
@@ -35,6 +35,10 @@ namespace rbc_ifem
 
     const std::vector<CellPlacement> &
     placements() const;
+
+    /// The parameters the layout was built from.
+    const LayoutParameters &
+    parameters() const;
 
     /// Extent of one cell along the capillary axis [µm].
     double

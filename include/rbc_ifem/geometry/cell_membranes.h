@@ -1,6 +1,7 @@
 #ifndef rbc_ifem_cell_membranes_h
 #define rbc_ifem_cell_membranes_h
 
+#include <rbc_ifem/base/csv.h>
 #include <rbc_ifem/geometry/cell_layout.h>
 #include <rbc_ifem/geometry/cell_surface.h>
 
@@ -8,7 +9,6 @@
 #include <deal.II/grid/tria.h>
 
 #include <memory>
-#include <ostream>
 #include <vector>
 
 namespace rbc_ifem
@@ -46,8 +46,8 @@ namespace rbc_ifem
     vertices() const;
 
     /// The table of cells.csv: cell,x,y,z,area,volume (centroid, µm, µm², µm³).
-    void
-    write_table(std::ostream &out) const;
+    CsvTable
+    table() const;
 
     /**
      * Measure the gaps between membranes and to the capillary wall, and

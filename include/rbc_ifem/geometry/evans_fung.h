@@ -2,6 +2,7 @@
 #define rbc_ifem_evans_fung_h
 
 #include <rbc_ifem/geometry/cell_placement.h>
+#include <rbc_ifem/geometry/parameters.h>
 
 #include <deal.II/grid/manifold.h>
 #include <deal.II/grid/manifold_lib.h>
@@ -15,7 +16,7 @@ namespace rbc_ifem
   using namespace dealii;
 
   /**
-   * The Evans-Fung biconcave shape of a resting red cell (design.md,
+   * The Evans-Fung biconcave shape of a resting red cell (doc/design.md,
    * "Membrane"): in a frame with the symmetry axis along z,
    *
    *   z(r) = ±0.5 R sqrt(1 - ρ²) (a0 + a1 ρ² + a2 ρ⁴),  ρ = r/R,
@@ -44,9 +45,10 @@ namespace rbc_ifem
     explicit EvansFungShape(const double        diameter,
                             const Coefficients &coefficients = red_cell);
 
-    /// The shape Cells/Shape names: "biconcave" (red_cell) or "sphere".
+    /// The shape of subsection Cells: its Shape (red_cell or sphere) and
+    /// Diameter.
     static EvansFungShape
-    named(const std::string &name, const double diameter);
+    of(const CellParameters &cells);
 
     double
     radius() const;

@@ -7,6 +7,7 @@
 
 #include <deal.II/grid/tria.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -30,48 +31,45 @@ namespace rbc_ifem
 
   /**
    * Where the immersed cells of an IFEMSimulation flow: the fluid mesh, what
-   * drives the flow, where the cells start, and the numbers that describe
-   * the run.
+   * drives the flow, where the cells start, and the scales that describe
+   * the run. Everything the time loop needs to know of the domain is here,
+   * so the loop is the same in every domain.
    */
   struct FlowDomain
   {
-    enum class Kind
-    {
-      capillary, ///< Poiseuille flow in the capillary segment, cells of
-                 ///< subsection Layout
-      shear_box  ///< simple shear in a box, one capsule at its centre
-    };
-
-    Kind                       kind = Kind::capillary;
-    FlowDrive                  drive;
+    /// The region the cells must stay in, for messages ("the capillary").
+    std::string name;
+    FlowDrive   drive;
+    /// Where the cells start.
     std::vector<CellPlacement> placements;
-    double                     shear_rate = 0.; ///< γ̇ of the shear box [1/s]
+    /// Create the fluid mesh, before the band refinement around the cells.
+    std::function<void(Triangulation<3> &)> create_mesh;
 
-    /// The capillary of subsection Geometry with the cells of subsection
-    /// Layout.
+    /// A velocity and a length scale for the Reynolds and capillary
+    /// numbers, with their symbols for the log.
+    double      velocity_scale = 0.; ///< [µm/s]
+    std::string velocity_symbol;
+    double      length_scale = 0.; ///< [µm]
+    std::string length_symbol;
+
+    /**
+     * The capillary of subsection Geometry with the cells of subsection
+     * Layout (CellLayout: throws InputError if they do not fit), Poiseuille
+     * inflow of mean speed ū.
+     */
     static FlowDomain
     capillary(const Parameters &parameters);
 
-    /// The box of subsection Shear at shear rate γ̇, a capsule at the origin.
+    /**
+     * The box of size @p box = (length, height, width) [µm] in simple shear
+     * of rate @p shear_rate [1/s], one capsule of subsection Cells at the
+     * origin; its coarse cells have the capsule's diameter as edge, refined
+     * Mesh/Fluid global refinements times.
+     */
     static FlowDomain
-    shear_box(const Parameters &parameters);
-
-    /// The fluid mesh before the band refinement around the cells.
-    void
-    create_mesh(Triangulation<3> &triangulation,
-                const Parameters &parameters) const;
-
-    /// A velocity scale: the mean inflow speed ū, or γ̇ a in the box [µm/s].
-    double
-    velocity_scale(const Parameters &parameters) const;
-
-    /// A length scale: the capillary diameter 2R, or the capsule radius a [µm].
-    double
-    length_scale(const Parameters &parameters) const;
-
-    /// The name of the region the cells must stay in, for messages.
-    std::string
-    name() const;
+    shear_box(const Tensor<1, 3> &box,
+              const double        shear_rate,
+              const Parameters   &parameters);
   };
 } // namespace rbc_ifem
 

@@ -1,7 +1,8 @@
 #ifndef rbc_ifem_membrane_h
 #define rbc_ifem_membrane_h
 
-#include <rbc_ifem/parameters.h>
+#include <rbc_ifem/membrane/elastic_law.h>
+#include <rbc_ifem/membrane/parameters.h>
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/table.h>
@@ -138,10 +139,18 @@ namespace rbc_ifem
     struct CellTerms;
     struct Sums;
 
-    /// The integrals of one cell at the local positions @p x.
-    template <typename Number>
+    /// The integrals of one cell at the local positions @p x, with @p law.
+    template <typename Number, typename Law>
     CellTerms<Number>
-    cell_terms(const unsigned int cell, const std::vector<Number> &x) const;
+    cell_terms(const Law                 &law,
+               const unsigned int         cell,
+               const std::vector<Number> &x) const;
+
+    /// Add the terms of @p cell to the nodal and global @p sums.
+    void
+    add_cell_terms(const unsigned int       cell,
+                   const CellTerms<double> &terms,
+                   Sums                    &sums) const;
 
     /// The cell integrals summed: per node (y, m, ν) and global (A, V).
     Sums
@@ -151,6 +160,7 @@ namespace rbc_ifem
     local_positions(const unsigned int cell, const Vector<double> &x) const;
 
     const MembraneParameters parameters;
+    const ElasticLaw         elastic_law; ///< chosen from parameters.law
     FE_Q<2, 3>               scalar_fe;
     FESystem<2, 3>           fe;
     DoFHandler<2, 3>         dof_handler;

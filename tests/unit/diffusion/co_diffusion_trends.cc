@@ -1,6 +1,6 @@
 // The physics trends of CO uptake that any layout must show (the paper's
-// Figs. 7 and 8), on a small mesh, through the same solve_layout() as the
-// layouts experiment:
+// Figs. 7 and 8), on a small mesh, through the same PlacedCells and
+// solve_uptake() as the layouts experiment:
 //
 // - DM total grows with the number of cells N (uniform layouts, N = 1..7);
 // - DM per cell falls with N;
@@ -8,7 +8,8 @@
 // - the gas layer adds almost no resistance: once its αD is large, DM of
 //   one cell does not depend on it.
 
-#include <rbc_ifem/experiments/diffusion_experiment.h>
+#include <rbc_ifem/diffusion/uptake.h>
+#include <rbc_ifem/experiments/uptake_experiment.h>
 
 #include "check.h"
 
@@ -32,23 +33,26 @@ namespace
   }
 
   double
-  dm(const Parameters &p, const std::string &kind, const unsigned int n_cells)
+  dm(const Parameters &p, const LayoutKind kind, const unsigned int n_cells)
   {
-    LayoutParameters layout = p.layout;
-    layout.kind             = kind;
-    layout.n_cells          = n_cells;
-    TimerOutput        timer(MPI_COMM_WORLD,
+    Parameters layout_run     = p;
+    layout_run.layout.kind    = kind;
+    layout_run.layout.n_cells = n_cells;
+    TimerOutput       timer(MPI_COMM_WORLD,
                       std::cout,
                       TimerOutput::never,
                       TimerOutput::wall_times);
-    const LayoutUptake uptake = solve_layout(p,
-                                             layout,
-                                             p.cells.surface_refinements,
-                                             p.mesh.diffusion_band_refinements,
-                                             MPI_COMM_WORLD,
-                                             timer);
-    std::cout << "  " << kind << ", " << n_cells << " cells: DM "
-              << uptake.dm_total << " µm³/(s Torr), per cell "
+    const PlacedCells cells(layout_run, p.cells.surface_refinements);
+    const Uptake      uptake = solve_uptake(p.geometry,
+                                       p.mesh,
+                                       p.diffusion,
+                                       cells.membranes.surfaces(),
+                                       cells.membranes.mapping(),
+                                       p.mesh.diffusion_band_refinements,
+                                       MPI_COMM_WORLD,
+                                       timer);
+    std::cout << "  " << name_of(kind, layout_kind_names()) << ", " << n_cells
+              << " cells: DM " << uptake.dm_total << " µm³/(s Torr), per cell "
               << uptake.dm_total / n_cells << '\n';
     return uptake.dm_total;
   }
@@ -64,7 +68,7 @@ main(int argc, char *argv[])
   std::cout << "Uniform layouts\n";
   std::vector<double> uniform{0.};
   for (unsigned int n = 1; n <= 7; ++n)
-    uniform.push_back(dm(p, "uniform", n));
+    uniform.push_back(dm(p, LayoutKind::uniform, n));
   for (unsigned int n = 2; n <= 7; ++n)
     {
       const std::string N =
@@ -81,7 +85,7 @@ main(int argc, char *argv[])
   for (unsigned int n = 2; n <= 5; ++n)
     check.at_least("clustered below uniform, N = " + std::to_string(n) +
                      ": 1 - clustered/uniform",
-                   1. - dm(p, "clustered", n) / uniform[n],
+                   1. - dm(p, LayoutKind::clustered, n) / uniform[n],
                    0.02);
 
   std::cout << "Gas layer permeability\n";
@@ -89,13 +93,13 @@ main(int argc, char *argv[])
   high_gas.diffusion.gas_diffusivity *= 100.;
   low_gas.diffusion.gas_diffusivity *= 1e-5;
   check.near("DM of one cell with gas αD x 100 / DM with gas αD x 1",
-             dm(high_gas, "uniform", 1) / uniform[1],
+             dm(high_gas, LayoutKind::uniform, 1) / uniform[1],
              1.,
              1e-3);
   // The check above could fail: a gas layer as resistive as tissue does
   // change DM.
   check.at_least("1 - DM with gas αD x 1e-5 / DM with gas αD x 1",
-                 1. - dm(low_gas, "uniform", 1) / uniform[1],
+                 1. - dm(low_gas, LayoutKind::uniform, 1) / uniform[1],
                  0.05);
   return check.exit_code();
 }

@@ -269,7 +269,7 @@ namespace
   {
     const FluidParameters stokes_parameters = plasma();
     FluidParameters       ns_parameters     = stokes_parameters;
-    ns_parameters.model                     = "Navier-Stokes";
+    ns_parameters.model                     = FluidModel::navier_stokes;
     Flow stokes(stokes_parameters, 1, 1e-6),
       navier_stokes(ns_parameters, 1, 1e-6);
     for (unsigned int step = 0; step < 2; ++step)
@@ -291,7 +291,7 @@ namespace
   newton_convergence(Checker &check, const double reynolds, const double dt)
   {
     FluidParameters f  = plasma();
-    f.model            = "Navier-Stokes";
+    f.model            = FluidModel::navier_stokes;
     f.density          = reynolds * f.viscosity / (f.inlet_mean_speed * 2. * R);
     f.newton_tolerance = 1e-9;
     f.max_linear_iterations = 1000;

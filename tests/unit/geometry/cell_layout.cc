@@ -84,14 +84,15 @@ main()
   // Every kind, every feasible N, seeds 1..20 for random: the meshed
   // surfaces keep the gap (up to the mesh's distance from the true shape,
   // < 1e-3 µm at 2 refinements) and stay off the wall.
-  for (const std::string kind : {"uniform", "random", "clustered"})
+  for (const auto &[kind, kind_name] : layout_kind_names())
     {
       layout.kind             = kind;
       double       worst_gap  = std::numeric_limits<double>::infinity();
       double       worst_wall = std::numeric_limits<double>::infinity();
       unsigned int n_runs     = 0;
       for (unsigned int n = 1; n <= reference.max_cells(); ++n)
-        for (unsigned int seed = 1; seed <= (kind == "random" ? 20u : 1u);
+        for (unsigned int seed = 1;
+             seed <= (kind == LayoutKind::random ? 20u : 1u);
              ++seed)
           {
             layout.n_cells = n;
@@ -106,20 +107,21 @@ main()
                     0.5 * gap - 1e-12 ||
                   p.center[0] + 0.5 * cell_layout.cell_length() >
                     geometry.capillary_length - 0.5 * gap + 1e-12)
-                check.holds(kind + ": a cell leaves the segment", false);
+                check.holds(kind_name + ": a cell leaves the segment", false);
           }
-      std::cout << kind << ": " << n_runs << " layouts\n";
-      check.at_least(kind + ": smallest membrane gap over all layouts [µm]",
+      std::cout << kind_name << ": " << n_runs << " layouts\n";
+      check.at_least(kind_name +
+                       ": smallest membrane gap over all layouts [µm]",
                      worst_gap,
                      gap - 1e-3);
-      check.near(kind + ": smallest wall clearance [µm]",
+      check.near(kind_name + ": smallest wall clearance [µm]",
                  worst_wall,
                  geometry.capillary_radius - cells.diameter / 2.,
                  1e-3);
     }
 
   // Uniform: centres at (i + 1/2) L / N exactly.
-  layout.kind    = "uniform";
+  layout.kind    = LayoutKind::uniform;
   layout.n_cells = 6;
   {
     const CellLayout uniform(layout, geometry, cells);
@@ -134,7 +136,7 @@ main()
   // Clustered: centres one cell length + gap apart, and the measured gap
   // between neighbouring membranes equal to Minimum gap (the sampled
   // distance overestimates it by < 1e-3 µm at 4 refinements).
-  layout.kind    = "clustered";
+  layout.kind    = LayoutKind::clustered;
   layout.n_cells = 5;
   {
     const CellLayout clustered(layout, geometry, cells);
@@ -156,7 +158,7 @@ main()
   }
 
   // Random: the same seed gives the same layout, another seed another one.
-  layout.kind    = "random";
+  layout.kind    = LayoutKind::random;
   layout.n_cells = 4;
   {
     layout.seed = 7;
@@ -179,7 +181,7 @@ main()
   {
     CellParameters tilted = cells;
     tilted.axis           = Tensor<1, 3>({0., 0., 1.});
-    layout.kind           = "clustered";
+    layout.kind           = LayoutKind::clustered;
     layout.n_cells        = 2;
     const CellLayout standing(layout, geometry, tilted);
     check.near("axis along z: cell length = diameter [µm]",
@@ -193,7 +195,7 @@ main()
 
   // Hematocrit = Σ V / (π R² L), here with 7 cells of the exact volume.
   {
-    layout.kind    = "uniform";
+    layout.kind    = LayoutKind::uniform;
     layout.n_cells = 7;
     const CellLayout full(layout, geometry, cells);
     const double     v = 82.95803163; // exact, test evans_fung_surface
@@ -216,10 +218,10 @@ main()
       }
   };
   layout.n_cells = 8;
-  for (const std::string kind : {"uniform", "random", "clustered"})
+  for (const auto &[kind, kind_name] : layout_kind_names())
     {
       layout.kind = kind;
-      throws("8 cells, " + kind, layout);
+      throws("8 cells, " + kind_name, layout);
     }
   layout.n_cells          = 5;
   layout.cluster_position = 0.1;

@@ -1,0 +1,105 @@
+#ifndef rbc_ifem_base_selection_h
+#define rbc_ifem_base_selection_h
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/utilities.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace rbc_ifem
+{
+  using namespace dealii;
+
+  /**
+   * The names of the values of an enum, as a .prm file spells them: the one
+   * place a choice such as Fluid/Model is written as text. Everything past
+   * the parameter file works with the enum.
+   */
+  template <typename Enum>
+  using SelectionNames = std::vector<std::pair<Enum, std::string>>;
+
+  /// "a|b|c": the names for a Patterns::Selection.
+  template <typename Enum>
+  std::string
+  selection_text(const SelectionNames<Enum> &names)
+  {
+    std::string text;
+    for (const auto &[value, name] : names)
+      text += (text.empty() ? "" : "|") + name;
+    return text;
+  }
+
+  template <typename Enum>
+  const std::string &
+  name_of(const Enum value, const SelectionNames<Enum> &names)
+  {
+    for (const auto &[v, name] : names)
+      if (v == value)
+        return name;
+    Assert(false, ExcInternalError());
+    return names.front().second;
+  }
+
+  /// The value named @p name; the Selection pattern has checked the name.
+  template <typename Enum>
+  Enum
+  value_of(const std::string &name, const SelectionNames<Enum> &names)
+  {
+    for (const auto &[value, n] : names)
+      if (n == name)
+        return value;
+    AssertThrow(false, ExcMessage("no value is named '" + name + "'"));
+    return names.front().first;
+  }
+
+  /**
+   * Declare @p entry as a selection of @p names whose default is the name of
+   * @p value, and bind @p value to it (as ParameterHandler::add_parameter()
+   * does for numbers).
+   */
+  template <typename Enum>
+  void
+  add_selection(ParameterHandler           &prm,
+                const std::string          &entry,
+                Enum                       &value,
+                const SelectionNames<Enum> &names,
+                const std::string          &documentation)
+  {
+    prm.declare_entry(entry,
+                      name_of(value, names),
+                      Patterns::Selection(selection_text(names)),
+                      documentation);
+    prm.add_action(entry, [&value, names](const std::string &name) {
+      value = value_of(name, names);
+    });
+  }
+
+  /// The same for a comma-separated list of at least one name.
+  template <typename Enum>
+  void
+  add_selection(ParameterHandler           &prm,
+                const std::string          &entry,
+                std::vector<Enum>          &values,
+                const SelectionNames<Enum> &names,
+                const std::string          &documentation)
+  {
+    std::string defaults;
+    for (const Enum value : values)
+      defaults += (defaults.empty() ? "" : ", ") + name_of(value, names);
+    prm.declare_entry(entry,
+                      defaults,
+                      Patterns::List(Patterns::Selection(selection_text(names)),
+                                     1),
+                      documentation);
+    prm.add_action(entry, [&values, names](const std::string &list) {
+      values.clear();
+      for (const std::string &name : Utilities::split_string_list(list))
+        values.push_back(value_of(name, names));
+    });
+  }
+} // namespace rbc_ifem
+
+#endif

@@ -1,0 +1,53 @@
+#ifndef rbc_ifem_coupling_cell_force_h
+#define rbc_ifem_coupling_cell_force_h
+
+#include <deal.II/base/tensor.h>
+#include <deal.II/lac/vector.h>
+
+#include <string>
+#include <vector>
+
+namespace rbc_ifem
+{
+  using namespace dealii;
+
+  /// What one CellForce did at the positions it was given.
+  struct CellForceReport
+  {
+    double energy = 0.; ///< E(x) [pN µm]
+    /**
+     * The net force it exerts on the cells [pN]: an external force's (a
+     * tether, a wall) holds them; an internal force (a membrane's elasticity,
+     * two cells pushing each other) sums to zero, and reports zero.
+     */
+    Tensor<1, 3> external_force;
+  };
+
+  /**
+   * One contribution to the forces on the membrane points of a
+   * CellPopulation: an energy E(x) of the positions x of all cells and its
+   * exact negative gradient F = -∂E/∂x. The population sums every force it
+   * holds (CellPopulation::add_force()); the coupling sees only the sum.
+   *
+   * Positions and forces come one Vector per cell, one entry per DoF of the
+   * cell's Membrane (the x, y, z of each node: Membrane::nodes()). Forces
+   * that involve several cells (a repulsion between them) see all of them;
+   * since F is a gradient, the forces of a pair are equal and opposite.
+   */
+  class CellForce
+  {
+  public:
+    virtual ~CellForce() = default;
+
+    /// What it is, for messages ("membrane elasticity", "tether").
+    virtual std::string
+    name() const = 0;
+
+    /// Add F = -∂E/∂x at @p positions to @p forces [pN]; report E.
+    virtual CellForceReport
+    add_forces(const std::vector<Vector<double>> &positions,
+               std::vector<Vector<double>>       &forces) const = 0;
+  };
+} // namespace rbc_ifem
+
+#endif

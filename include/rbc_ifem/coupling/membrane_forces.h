@@ -1,0 +1,62 @@
+#ifndef rbc_ifem_coupling_membrane_forces_h
+#define rbc_ifem_coupling_membrane_forces_h
+
+#include <rbc_ifem/coupling/cell_force.h>
+#include <rbc_ifem/membrane/membrane.h>
+
+#include <memory>
+#include <vector>
+
+namespace rbc_ifem
+{
+  /**
+   * The membranes' own mechanics as a CellForce: every cell's Membrane
+   * energy (in-plane law, bending, area and volume) and its exact forces.
+   * Internal: it holds no cell in place.
+   */
+  class MembraneElasticity : public CellForce
+  {
+  public:
+    /// The membranes of the cells, in the population's order.
+    explicit MembraneElasticity(
+      const std::vector<std::unique_ptr<Membrane>> &membranes);
+
+    std::string
+    name() const override;
+
+    CellForceReport
+    add_forces(const std::vector<Vector<double>> &positions,
+               std::vector<Vector<double>>       &forces) const override;
+
+  private:
+    const std::vector<std::unique_ptr<Membrane>> &membranes;
+    /// One cell's forces, before they are added.
+    mutable Vector<double> cell_forces;
+  };
+
+  /**
+   * Springs that hold every membrane point at its reference position X:
+   * E = k/2 |x - X|², F = -k (x - X). External: the force that holds the
+   * cells (the drag's opposite) is flow.csv's held_force (Immersed
+   * cells/Tether stiffness).
+   */
+  class Tether : public CellForce
+  {
+  public:
+    Tether(const std::vector<std::unique_ptr<Membrane>> &membranes,
+           const double                                  stiffness);
+
+    std::string
+    name() const override;
+
+    CellForceReport
+    add_forces(const std::vector<Vector<double>> &positions,
+               std::vector<Vector<double>>       &forces) const override;
+
+  private:
+    const std::vector<std::unique_ptr<Membrane>> &membranes;
+    const double                                  stiffness; ///< k [pN/µm]
+  };
+} // namespace rbc_ifem
+
+#endif

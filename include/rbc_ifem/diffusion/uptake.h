@@ -1,0 +1,55 @@
+#ifndef rbc_ifem_diffusion_uptake_h
+#define rbc_ifem_diffusion_uptake_h
+
+#include <rbc_ifem/diffusion/parameters.h>
+#include <rbc_ifem/geometry/parameters.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/base/types.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/grid/tria.h>
+
+#include <functional>
+#include <vector>
+
+namespace rbc_ifem
+{
+  using namespace dealii;
+
+  class CODiffusion;
+
+  /// What one CO uptake solve gives.
+  struct Uptake
+  {
+    double                  dm_total = 0.;  ///< [µm³ s⁻¹ Torr⁻¹]
+    std::vector<double>     dm_cells;       ///< [µm³ s⁻¹ Torr⁻¹]
+    unsigned int            n_nodes    = 0; ///< vertices of the volume mesh
+    unsigned int            n_cells    = 0; ///< cells of the volume mesh
+    types::global_dof_index n_dofs     = 0; ///< P and λ
+    unsigned int            iterations = 0;
+    double                  seconds    = 0.; ///< wall time of the whole solve
+  };
+
+  /**
+   * The DM building block: the CO uptake of the membranes @p surfaces
+   * (curved by @p mapping) in the capillary of @p geometry, on its diffusion
+   * mesh (Mesh/Diffusion global refinements) refined @p band_refinements
+   * times within Mesh/Band width of their vertices, by CODiffusion; then
+   * @p write_fields, if given, writes what the caller wants of the solve.
+   * Throws SolverFailure if the solve fails.
+   */
+  Uptake
+  solve_uptake(
+    const GeometryParameters                       &geometry,
+    const MeshParameters                           &mesh,
+    const DiffusionParameters                      &diffusion,
+    const std::vector<const Triangulation<2, 3> *> &surfaces,
+    const MappingQ<2, 3>                           &mapping,
+    const unsigned int                              band_refinements,
+    const MPI_Comm                                  communicator,
+    TimerOutput                                    &timer,
+    const std::function<void(const CODiffusion &)> &write_fields = {});
+} // namespace rbc_ifem
+
+#endif

@@ -1,0 +1,95 @@
+#ifndef rbc_ifem_experiments_experiment_h
+#define rbc_ifem_experiments_experiment_h
+
+#include <rbc_ifem/parameters.h>
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/timer.h>
+
+#include <string>
+
+namespace rbc_ifem
+{
+  using namespace dealii;
+
+  /**
+   * The parameters of an experiment's own subsection (Shear, Stretching,
+   * ...), if it has one: declared and bound like the model's (see
+   * GeometryParameters), and checked against the model's parameters once
+   * the experiment is chosen.
+   */
+  class ExperimentParameters
+  {
+  public:
+    virtual ~ExperimentParameters() = default;
+
+    virtual void
+    add_parameters(ParameterHandler &prm) = 0;
+
+    /// Throw InputError if these do not go with @p parameters.
+    virtual void
+    validate(const Parameters &parameters) const;
+  };
+
+  /**
+   * One kind of run of the program, named by the parameter Experiment; the
+   * registry (experiments/registry.h) lists them all. An experiment is a
+   * type: it implements setup() and execute(), and run() does what every
+   * experiment does around them, in this order:
+   *
+   *  1. the opening line "rbc-ifem: experiment 'NAME' on N rank(s)";
+   *  2. setup(): build and check everything the parameters ask for. An
+   *     impossible request throws InputError here, before anything is
+   *     written;
+   *  3. the output directory, and in it parameters.prm: the parameters as
+   *     the run uses them;
+   *  4. execute(): the experiment's work and its files;
+   *  5. timing.csv (section,calls,wall_seconds) from @ref timer, the list of
+   *     the files written (from what was written: written_files()), and the
+   *     peak memory.
+   */
+  class Experiment
+  {
+  public:
+    /**
+     * The experiment @p name (its registry name) with the model's
+     * @p parameters; @p prm holds every parameter of the run as read, for
+     * parameters.prm, and must outlive the experiment.
+     */
+    Experiment(const std::string      &name,
+               const Parameters       &parameters,
+               const ParameterHandler &prm,
+               const MPI_Comm          communicator);
+
+    virtual ~Experiment() = default;
+
+    /// The whole run, steps 1-5 above.
+    void
+    run();
+
+  protected:
+    /// Build and check; write nothing. Does nothing unless overridden.
+    virtual void
+    setup();
+
+    /// The experiment's work, once the output directory exists.
+    virtual void
+    execute() = 0;
+
+    const std::string       name;
+    const Parameters        parameters;
+    const ParameterHandler &prm;
+    const MPI_Comm          communicator;
+    ConditionalOStream      pcout; ///< rank 0's standard output
+    /**
+     * The sections of the run, for timing.csv: rank 0's own clock, since a
+     * TimerOutput on the world communicator warns at length when an
+     * exception unwinds through it.
+     */
+    TimerOutput timer;
+  };
+} // namespace rbc_ifem
+
+#endif

@@ -1,0 +1,126 @@
+#ifndef rbc_ifem_experiments_registry_h
+#define rbc_ifem_experiments_registry_h
+
+#include <rbc_ifem/experiments/experiment.h>
+#include <rbc_ifem/parameters.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <functional>
+#include <memory>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace rbc_ifem
+{
+  using namespace dealii;
+
+  /// One entry of the registry: an experiment the parameter Experiment names.
+  struct ExperimentType
+  {
+    std::string name;
+    /// What it does and writes, for the documentation of Experiment.
+    std::string documentation;
+    /// A new object of its own subsection's parameters, or null.
+    std::function<std::unique_ptr<ExperimentParameters>()> make_parameters;
+    /**
+     * The experiment, from the model's parameters, its own (null if it has
+     * none) and everything as read, for parameters.prm.
+     */
+    std::function<std::unique_ptr<Experiment>(const Parameters &,
+                                              const ExperimentParameters *,
+                                              const ParameterHandler &,
+                                              const MPI_Comm)>
+      create;
+  };
+
+  /**
+   * Every experiment of the program, in the order the documentation lists
+   * them: the one list of their names, which the parameter Experiment, main()
+   * and the tests (rbc-ifem --list-experiments) read. To add an
+   * experiment, write its class and add its line here
+   * (experiments/registry.cc).
+   */
+  const std::vector<ExperimentType> &
+  experiment_types();
+
+  /// One entry of a derived run (RunParameters::derive()): "" for the top.
+  struct ParameterChange
+  {
+    std::string subsection;
+    std::string entry;
+    std::string value;
+  };
+
+  /// The shortest text that a .prm file reads back as exactly @p value.
+  std::string
+  exact_text(const double value);
+
+  /**
+   * Everything a parameter file sets, in one ParameterHandler: Experiment,
+   * the model's Parameters and every experiment's own subsection, each
+   * declared with its default and bound to the objects here, so that
+   * reading a file fills them. Not copyable: the handler refers to them.
+   */
+  class RunParameters
+  {
+  public:
+    RunParameters();
+    RunParameters(const RunParameters &) = delete;
+    RunParameters &
+    operator=(const RunParameters &) = delete;
+
+    /**
+     * Read @p filename and check what can be checked without building
+     * anything. Throws InputError, naming the file, the parameter and the
+     * value, if the file cannot be read, holds an unknown entry or a value
+     * outside its pattern, or asks for something impossible.
+     */
+    void
+    read(const std::string &filename);
+
+    /**
+     * Take every value of @p other (as its parameters.prm shows them), then
+     * @p changes, and check the result: a run derived from another, whose
+     * parameters.prm is exactly what it runs.
+     */
+    void
+    derive(const ParameterHandler             &other,
+           const std::vector<ParameterChange> &changes);
+
+    /// The experiment the parameters name, ready to run().
+    std::unique_ptr<Experiment>
+    create_experiment(const MPI_Comm communicator) const;
+
+    /// The model's parameters as read.
+    const Parameters &
+    model() const;
+
+    /// Every parameter, as read: what parameters.prm shows.
+    const ParameterHandler &
+    handler() const;
+
+    /// Every parameter with its documentation and default, as a .prm file.
+    void
+    print(std::ostream &out) const;
+
+  private:
+    /// The index in experiment_types() of the one Experiment names.
+    unsigned int
+    chosen() const;
+
+    /// Check the model's parameters and the chosen experiment's own.
+    void
+    validate() const;
+
+    ParameterHandler prm;
+    std::string      experiment = "geometry";
+    Parameters       parameters;
+    /// Each experiment's own parameters, in registry order (null: none).
+    std::vector<std::unique_ptr<ExperimentParameters>> own;
+  };
+} // namespace rbc_ifem
+
+#endif

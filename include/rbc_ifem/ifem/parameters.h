@@ -1,0 +1,53 @@
+#ifndef rbc_ifem_ifem_parameters_h
+#define rbc_ifem_ifem_parameters_h
+
+#include <deal.II/base/parameter_handler.h>
+
+namespace rbc_ifem
+{
+  using namespace dealii;
+
+  /**
+   * Time stepping of the flowing runs (subsection "Time"). The initializers
+   * are the defaults (see GeometryParameters).
+   */
+  struct TimeParameters
+  {
+    double       time_step       = 1e-3; ///< Δt [s]
+    unsigned int n_steps         = 10;
+    unsigned int output_interval = 1; ///< VTU every this many steps
+
+    void
+    add_parameters(ParameterHandler &prm);
+    /// Throws InputError unless Time step > 0.
+    void
+    validate() const;
+  };
+
+  /**
+   * Experiment "flow" with red cells in the plasma, the immersed method
+   * (subsection "Immersed cells"): what the time loop of IFEMSimulation
+   * does besides the steps of subsection Time.
+   */
+  struct ImmersedParameters
+  {
+    bool enabled      = false; ///< carry the cells of subsection Layout
+    bool follow_cells = true;  ///< frame velocity = the cells' mean velocity
+    unsigned int diffusion_interval = 0; ///< DM every this many steps; 0: never
+    unsigned int checkpoint_interval = 0; ///< 0: never
+    bool         resume = false; ///< from Output directory/checkpoint.bin
+    double max_step_displacement = 0.25; ///< of the fluid mesh size h, per step
+    unsigned int progress_interval =
+      10;                         ///< a progress line every this many steps
+    double tether_stiffness = 0.; ///< springs to the start [pN/µm]; 0: free
+
+    void
+    add_parameters(ParameterHandler &prm);
+    /// Throws InputError for held cells in a moving frame, or a zero
+    /// Maximum step displacement.
+    void
+    validate() const;
+  };
+} // namespace rbc_ifem
+
+#endif

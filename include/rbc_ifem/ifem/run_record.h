@@ -1,0 +1,39 @@
+#ifndef rbc_ifem_ifem_run_record_h
+#define rbc_ifem_ifem_run_record_h
+
+#include <rbc_ifem/base/csv.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace rbc_ifem
+{
+  /**
+   * What a flowing run has produced so far and where it stands: its tables,
+   * the records of its .pvd files, the step, the time and how far the frame
+   * has moved. The tables are rewritten whole from it, so a run that stops
+   * leaves complete files, and a checkpoint carries it.
+   */
+  struct RunRecord
+  {
+    unsigned int step     = 0;
+    double       time     = 0.; ///< [s]
+    double   frame_offset = 0.; ///< distance the frame has moved along x [µm]
+    CsvTable flow, cells, dm;   ///< flow.csv, cells.csv, dm.csv
+    std::vector<std::pair<double, std::string>> fluid_files;
+    std::vector<std::vector<std::pair<double, std::string>>>
+                                                cell_files; ///< per cell
+    std::vector<std::pair<double, std::string>> diffusion_files, flux_files;
+
+    template <class Archive>
+    void
+    serialize(Archive &archive, const unsigned int)
+    {
+      archive &step &time &frame_offset &flow &cells &dm &fluid_files
+        &cell_files &diffusion_files &flux_files;
+    }
+  };
+} // namespace rbc_ifem
+
+#endif

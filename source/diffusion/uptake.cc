@@ -1,0 +1,65 @@
+#include <rbc_ifem/diffusion/co_diffusion.h>
+#include <rbc_ifem/diffusion/uptake.h>
+#include <rbc_ifem/geometry/capillary_mesh.h>
+
+#include <deal.II/distributed/shared_tria.h>
+
+namespace rbc_ifem
+{
+  Uptake
+  solve_uptake(const GeometryParameters                       &geometry,
+               const MeshParameters                           &mesh_parameters,
+               const DiffusionParameters                      &d,
+               const std::vector<const Triangulation<2, 3> *> &surfaces,
+               const MappingQ<2, 3>                           &mapping,
+               const unsigned int                              band_refinements,
+               const MPI_Comm                                  communicator,
+               TimerOutput                                    &timer,
+               const std::function<void(const CODiffusion &)> &write_fields)
+  {
+    Timer                              clock;
+    parallel::shared::Triangulation<3> mesh(
+      communicator,
+      Triangulation<3>::none,
+      false,
+      parallel::shared::Triangulation<3>::partition_metis);
+    {
+      TimerOutput::Scope    scope(timer, "diffusion mesh");
+      std::vector<Point<3>> band_points;
+      for (const auto *surface : surfaces)
+        band_points.insert(band_points.end(),
+                           surface->get_vertices().begin(),
+                           surface->get_vertices().end());
+      create_diffusion_mesh(mesh,
+                            geometry,
+                            mesh_parameters.diffusion_global_refinements);
+      refine_near_points(mesh,
+                         band_points,
+                         mesh_parameters.band_width,
+                         band_refinements);
+    }
+
+    CODiffusion diffusion(
+      d,
+      [&d](const unsigned int id) { return d.permeability(id); },
+      DiffusionBoundary::alveolar_surface,
+      communicator,
+      timer);
+    diffusion.setup(mesh, surfaces, mapping);
+    diffusion.assemble();
+    diffusion.solve();
+    if (write_fields)
+      write_fields(diffusion);
+
+    Uptake uptake;
+    uptake.dm_total = diffusion.dm_total();
+    for (const double flow : diffusion.membrane_flows())
+      uptake.dm_cells.push_back(flow / d.alveolar_pressure);
+    uptake.n_nodes = mesh.n_used_vertices();
+    uptake.n_cells = mesh.n_active_cells();
+    uptake.n_dofs = diffusion.n_pressure_dofs() + diffusion.n_multiplier_dofs();
+    uptake.iterations = diffusion.n_iterations();
+    uptake.seconds    = clock.wall_time();
+    return uptake;
+  }
+} // namespace rbc_ifem

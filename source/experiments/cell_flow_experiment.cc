@@ -1,0 +1,35 @@
+#include <rbc_ifem/base/input_error.h>
+#include <rbc_ifem/experiments/cell_flow_experiment.h>
+
+namespace rbc_ifem
+{
+  CellFlowExperiment::CellFlowExperiment(const std::string      &name,
+                                         const Parameters       &parameters,
+                                         const ParameterHandler &prm,
+                                         const MPI_Comm          communicator)
+    : Experiment(name, parameters, prm, communicator)
+  {
+    if (parameters.layout.n_cells == 0)
+      throw InputError("Layout/Number of cells",
+                       "0",
+                       "a flow with Immersed cells/Enabled = true needs at "
+                       "least one cell.");
+  }
+
+  void
+  CellFlowExperiment::setup()
+  {
+    pcout << "  with immersed cells ("
+          << name_of(parameters.fluid.model, fluid_model_names()) << ')'
+          << std::endl;
+    simulation = std::make_unique<IFEMSimulation>(
+      parameters, FlowDomain::capillary(parameters), communicator, timer);
+    simulation->setup();
+  }
+
+  void
+  CellFlowExperiment::execute()
+  {
+    simulation->run();
+  }
+} // namespace rbc_ifem

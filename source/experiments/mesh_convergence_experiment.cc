@@ -1,0 +1,93 @@
+#include <rbc_ifem/base/csv.h>
+#include <rbc_ifem/experiments/mesh_convergence_experiment.h>
+
+#include <cmath>
+
+namespace rbc_ifem
+{
+  void
+  MeshConvergenceParameters::add_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Mesh convergence");
+    prm.add_parameter("Number of levels",
+                      n_levels,
+                      "Experiment 'mesh convergence': level 0 is the mesh of "
+                      "subsection Mesh and Cells/Surface refinements; each "
+                      "further level refines the diffusion mesh's band and "
+                      "the membranes once more.",
+                      Patterns::Integer(2, 6));
+    prm.leave_subsection();
+  }
+
+  MeshConvergenceExperiment::MeshConvergenceExperiment(
+    const std::string               &name,
+    const Parameters                &parameters,
+    const MeshConvergenceParameters &study,
+    const ParameterHandler          &prm,
+    const MPI_Comm                   communicator)
+    : UptakeExperiment(name, parameters, prm, communicator)
+    , study(study)
+  {}
+
+  void
+  MeshConvergenceExperiment::setup()
+  {
+    coarsest =
+      std::make_unique<const PlacedCells>(parameters,
+                                          parameters.cells.surface_refinements);
+  }
+
+  void
+  MeshConvergenceExperiment::execute()
+  {
+    std::vector<Uptake>                levels;
+    std::unique_ptr<const PlacedCells> cells = std::move(coarsest);
+    for (unsigned int level = 0; level < study.n_levels; ++level)
+      {
+        if (level > 0)
+          cells = std::make_unique<const PlacedCells>(
+            parameters, parameters.cells.surface_refinements + level);
+        levels.push_back(
+          solve(*cells, parameters.mesh.diffusion_band_refinements + level));
+        report("level " + std::to_string(level) + ", " +
+                 std::to_string(levels.back().n_nodes) + " nodes",
+               levels.back());
+      }
+
+    // Richardson extrapolation from the last three levels (h halves from
+    // level to level): DM(h) = DM* + C h^p.
+    const unsigned int L  = levels.size() - 1;
+    const double       d2 = levels[L].dm_total, d1 = levels[L - 1].dm_total;
+    const double       ratio =
+      L >= 2 ? (d1 - levels[L - 2].dm_total) / (d2 - d1) : 0.;
+    const bool   monotone = ratio > 1.;
+    const double limit    = monotone ? d2 + (d2 - d1) / (ratio - 1.) : d2;
+    if (monotone)
+      pcout << "  extrapolated DM " << limit << " µm³/(s Torr), observed order "
+            << std::log2(ratio) << std::endl;
+    else
+      pcout << "  the last levels do not converge monotonically; differences "
+               "are taken from the finest level"
+            << std::endl;
+
+    CsvTable table("level,n_nodes,n_cells,n_dofs,dm_total,relative_change,"
+                   "surface_refinements,band_refinements,iterations,seconds,"
+                   "difference_from_limit");
+    for (unsigned int l = 0; l <= L; ++l)
+      {
+        const Uptake &u = levels[l];
+        CsvRow        row;
+        row << l << u.n_nodes << u.n_cells << u.n_dofs << u.dm_total;
+        if (l == 0)
+          row << "nan";
+        else
+          row << std::abs(u.dm_total - levels[l - 1].dm_total) / u.dm_total;
+        row << parameters.cells.surface_refinements + l
+            << parameters.mesh.diffusion_band_refinements + l << u.iterations
+            << u.seconds << std::abs(u.dm_total - limit) / limit;
+        table.add_row(row.str());
+      }
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      table.write(parameters.output_directory + "/convergence.csv");
+  }
+} // namespace rbc_ifem

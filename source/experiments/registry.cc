@@ -1,0 +1,240 @@
+#include <rbc_ifem/base/input_error.h>
+#include <rbc_ifem/experiments/cell_flow_experiment.h>
+#include <rbc_ifem/experiments/diffusion_experiment.h>
+#include <rbc_ifem/experiments/flow_experiment.h>
+#include <rbc_ifem/experiments/geometry_experiment.h>
+#include <rbc_ifem/experiments/layouts_experiment.h>
+#include <rbc_ifem/experiments/mesh_convergence_experiment.h>
+#include <rbc_ifem/experiments/registry.h>
+#include <rbc_ifem/experiments/shear_experiment.h>
+#include <rbc_ifem/experiments/stretching_experiment.h>
+
+#include <deal.II/base/exceptions.h>
+
+#include <charconv>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace rbc_ifem
+{
+  namespace
+  {
+    /// The registry entry of an experiment without a subsection of its own.
+    template <typename ExperimentClass>
+    ExperimentType
+    entry(const std::string &name, const std::string &documentation)
+    {
+      return {name,
+              documentation,
+              nullptr,
+              [name](const Parameters &parameters,
+                     const ExperimentParameters *,
+                     const ParameterHandler &prm,
+                     const MPI_Comm          communicator) {
+                return std::make_unique<ExperimentClass>(name,
+                                                         parameters,
+                                                         prm,
+                                                         communicator);
+              }};
+    }
+
+    /// The entry of an experiment with the subsection OwnParameters.
+    template <typename ExperimentClass, typename OwnParameters>
+    ExperimentType
+    entry_with(const std::string &name, const std::string &documentation)
+    {
+      return {name,
+              documentation,
+              [] { return std::make_unique<OwnParameters>(); },
+              [name](const Parameters           &parameters,
+                     const ExperimentParameters *own,
+                     const ParameterHandler     &prm,
+                     const MPI_Comm              communicator) {
+                return std::make_unique<ExperimentClass>(
+                  name,
+                  parameters,
+                  static_cast<const OwnParameters &>(*own),
+                  prm,
+                  communicator);
+              }};
+    }
+
+    /// "flow" is the plasma alone, or with the immersed cells.
+    std::unique_ptr<Experiment>
+    create_flow(const Parameters &parameters,
+                const ExperimentParameters *,
+                const ParameterHandler &prm,
+                const MPI_Comm          communicator)
+    {
+      if (parameters.immersed.enabled)
+        return std::make_unique<CellFlowExperiment>("flow",
+                                                    parameters,
+                                                    prm,
+                                                    communicator);
+      return std::make_unique<FlowExperiment>("flow",
+                                              parameters,
+                                              prm,
+                                              communicator);
+    }
+  } // namespace
+
+  const std::vector<ExperimentType> &
+  experiment_types()
+  {
+    static const std::vector<ExperimentType> types{
+      entry<GeometryExperiment>(
+        "geometry",
+        "build the fluid and diffusion meshes and the cell layout, and "
+        "write them out."),
+      entry<DiffusionExperiment>(
+        "diffusion",
+        "steady CO uptake of the layout (dm.csv, VTU of P and of the "
+        "membrane flux)."),
+      entry_with<LayoutsExperiment, LayoutStudyParameters>(
+        "layouts",
+        "DM for every kind and number of cells of subsection Layout study "
+        "(layouts.csv)."),
+      entry_with<MeshConvergenceExperiment, MeshConvergenceParameters>(
+        "mesh convergence",
+        "DM of the layout on successively finer meshes (convergence.csv)."),
+      {"flow",
+       "the plasma flow in the capillary for Time/Number of steps (flow.csv, "
+       "VTU of v and p), with the cells of subsection Layout in it if "
+       "Immersed cells/Enabled (cells.csv, dm.csv, VTU of the membranes).",
+       nullptr,
+       create_flow},
+      entry_with<StretchingExperiment, StretchingParameters>(
+        "stretching",
+        "one cell pulled by two beads with forces up to Stretching/Maximum "
+        "force (stretch.csv, VTU of each equilibrium)."),
+      entry_with<ShearExperiment, ShearParameters>(
+        "shear",
+        "a spherical capsule in simple shear for each Shear/Capillary "
+        "numbers (shear.csv per run, shear_summary.csv).")};
+    return types;
+  }
+
+  void
+  ExperimentParameters::validate(const Parameters &) const
+  {}
+
+  std::string
+  exact_text(const double value)
+  {
+    char       text[32];
+    const auto end = std::to_chars(text, text + sizeof(text), value).ptr;
+    return std::string(text, end);
+  }
+
+  RunParameters::RunParameters()
+  {
+    std::string names, documentation = "What to run.";
+    for (const ExperimentType &type : experiment_types())
+      {
+        names += (names.empty() ? "" : "|") + type.name;
+        documentation += " " + type.name + ": " + type.documentation;
+      }
+    prm.add_parameter("Experiment",
+                      experiment,
+                      documentation,
+                      Patterns::Selection(names));
+    parameters.add_parameters(prm);
+    for (const ExperimentType &type : experiment_types())
+      {
+        own.push_back(type.make_parameters ? type.make_parameters() : nullptr);
+        if (own.back())
+          own.back()->add_parameters(prm);
+      }
+  }
+
+  void
+  RunParameters::read(const std::string &filename)
+  {
+    if (!std::filesystem::is_regular_file(filename) || !std::ifstream(filename))
+      throw InputError("cannot read the parameter file '" + filename +
+                       "': it does not exist or is not a readable file.");
+    try
+      {
+        prm.parse_input(filename);
+      }
+    catch (const ExceptionBase &e)
+      {
+        // deal.II's message names the line, the entry, the value and the
+        // pattern; drop the backtrace and point to the list of names.
+        std::ostringstream message;
+        e.print_info(message);
+        throw InputError("in parameter file '" + filename + "':\n" +
+                         message.str() +
+                         "\nRun 'rbc-ifem --print-parameters' for every "
+                         "parameter, its allowed values and its default.");
+      }
+    validate();
+  }
+
+  void
+  RunParameters::derive(const ParameterHandler             &other,
+                        const std::vector<ParameterChange> &changes)
+  {
+    std::ostringstream text;
+    other.print_parameters(text, ParameterHandler::PRM);
+    prm.parse_input_from_string(text.str());
+    for (const ParameterChange &change : changes)
+      {
+        if (!change.subsection.empty())
+          prm.enter_subsection(change.subsection);
+        prm.set(change.entry, change.value);
+        if (!change.subsection.empty())
+          prm.leave_subsection();
+      }
+    validate();
+  }
+
+  unsigned int
+  RunParameters::chosen() const
+  {
+    const std::vector<ExperimentType> &types = experiment_types();
+    for (unsigned int t = 0; t < types.size(); ++t)
+      if (types[t].name == experiment)
+        return t;
+    // The Selection pattern of Experiment admits only the registry's names.
+    AssertThrow(false, ExcInternalError());
+    return 0;
+  }
+
+  void
+  RunParameters::validate() const
+  {
+    parameters.validate();
+    if (const ExperimentParameters *own_parameters = own[chosen()].get())
+      own_parameters->validate(parameters);
+  }
+
+  std::unique_ptr<Experiment>
+  RunParameters::create_experiment(const MPI_Comm communicator) const
+  {
+    const unsigned int t = chosen();
+    return experiment_types()[t].create(parameters,
+                                        own[t].get(),
+                                        prm,
+                                        communicator);
+  }
+
+  const Parameters &
+  RunParameters::model() const
+  {
+    return parameters;
+  }
+
+  const ParameterHandler &
+  RunParameters::handler() const
+  {
+    return prm;
+  }
+
+  void
+  RunParameters::print(std::ostream &out) const
+  {
+    prm.print_parameters(out, ParameterHandler::PRM);
+  }
+} // namespace rbc_ifem

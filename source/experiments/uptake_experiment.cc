@@ -1,0 +1,58 @@
+#include <rbc_ifem/experiments/uptake_experiment.h>
+
+#include <iomanip>
+
+namespace rbc_ifem
+{
+  PlacedCells::PlacedCells(const Parameters  &parameters,
+                           const unsigned int surface_refinements)
+    : PlacedCells(parameters,
+                  CellLayout(parameters.layout,
+                             parameters.geometry,
+                             parameters.cells),
+                  surface_refinements)
+  {}
+
+  PlacedCells::PlacedCells(const Parameters  &parameters,
+                           const CellLayout  &layout,
+                           const unsigned int surface_refinements)
+    : layout(layout)
+    , membranes(layout.placements(),
+                EvansFungShape::of(parameters.cells),
+                surface_refinements)
+  {
+    membranes.require_clearance(parameters.geometry.capillary_radius);
+  }
+
+  double
+  PlacedCells::hematocrit() const
+  {
+    return layout.hematocrit(membranes.volumes());
+  }
+
+  Uptake
+  UptakeExperiment::solve(
+    const PlacedCells                              &cells,
+    const unsigned int                              band_refinements,
+    const std::function<void(const CODiffusion &)> &write_fields)
+  {
+    return solve_uptake(parameters.geometry,
+                        parameters.mesh,
+                        parameters.diffusion,
+                        cells.membranes.surfaces(),
+                        cells.membranes.mapping(),
+                        band_refinements,
+                        communicator,
+                        timer,
+                        write_fields);
+  }
+
+  void
+  UptakeExperiment::report(const std::string &what, const Uptake &uptake)
+  {
+    pcout << "  " << what << ": " << uptake.n_dofs << " DoFs, "
+          << uptake.iterations << " FGMRES iterations, " << std::setprecision(4)
+          << uptake.seconds << " s; DM " << std::setprecision(6)
+          << uptake.dm_total << " µm³/(s Torr)" << std::endl;
+  }
+} // namespace rbc_ifem

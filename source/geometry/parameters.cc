@@ -1,0 +1,191 @@
+#include <rbc_ifem/base/input_error.h>
+#include <rbc_ifem/geometry/parameters.h>
+
+#include <deal.II/base/patterns.h>
+
+namespace rbc_ifem
+{
+  void
+  GeometryParameters::add_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Geometry");
+    prm.add_parameter("Capillary radius",
+                      capillary_radius,
+                      "Radius of the capillary lumen [µm]. The segment is the "
+                      "cylinder of this radius along the x axis.",
+                      Patterns::Double(0.));
+    prm.add_parameter("Capillary length",
+                      capillary_length,
+                      "Length of the capillary segment, from x = 0 to "
+                      "x = length [µm]. 20 µm holds 7 cells of 7.5 µm, as in "
+                      "the paper.",
+                      Patterns::Double(0.));
+    prm.add_parameter("Wall thickness",
+                      wall_thickness,
+                      "Thickness of the vessel wall (tissue) around the "
+                      "lumen [µm].",
+                      Patterns::Double(0.));
+    prm.add_parameter("Gas layer thickness",
+                      gas_layer_thickness,
+                      "Thickness of the alveolar gas layer outside the wall "
+                      "[µm]; P = P_A holds on its outer surface.",
+                      Patterns::Double(0.));
+    prm.leave_subsection();
+  }
+
+  void
+  GeometryParameters::validate() const
+  {
+    require_positive("Geometry/Capillary radius", capillary_radius);
+    require_positive("Geometry/Capillary length", capillary_length);
+    require_positive("Geometry/Wall thickness", wall_thickness);
+    require_positive("Geometry/Gas layer thickness", gas_layer_thickness);
+  }
+
+  void
+  MeshParameters::add_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Mesh");
+    prm.add_parameter("Fluid global refinements",
+                      fluid_global_refinements,
+                      "Global refinements of the coarse lumen mesh (fluid).",
+                      Patterns::Integer(0, 6));
+    prm.add_parameter("Fluid band refinements",
+                      fluid_band_refinements,
+                      "Further refinements of the fluid mesh in a band around "
+                      "the cell membranes (see Band width).",
+                      Patterns::Integer(0, 4));
+    prm.add_parameter("Diffusion global refinements",
+                      diffusion_global_refinements,
+                      "Global refinements of the coarse lumen + wall + gas "
+                      "mesh (CO diffusion).",
+                      Patterns::Integer(0, 6));
+    prm.add_parameter("Diffusion band refinements",
+                      diffusion_band_refinements,
+                      "Further refinements of the diffusion mesh in a band "
+                      "around the cell membranes. The mesh there must be about "
+                      "as fine as the membranes or finer; CO fluxes are "
+                      "smoothest with membrane cells about twice the size of "
+                      "the mesh cells (with 1 global refinement: band "
+                      "refinements = Cells/Surface refinements).",
+                      Patterns::Integer(0, 5));
+    prm.add_parameter("Band width",
+                      band_width,
+                      "Half-width of the band around the membranes that band "
+                      "refinement acts on [µm]: a mesh cell is refined if it "
+                      "comes closer than this to a membrane.",
+                      Patterns::Double(0.));
+    prm.leave_subsection();
+  }
+
+  const SelectionNames<ReferenceShape> &
+  reference_shape_names()
+  {
+    static const SelectionNames<ReferenceShape> names{
+      {ReferenceShape::biconcave, "biconcave"},
+      {ReferenceShape::sphere, "sphere"}};
+    return names;
+  }
+
+  void
+  CellParameters::add_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Cells");
+    add_selection(prm,
+                  "Shape",
+                  shape,
+                  reference_shape_names(),
+                  "Reference shape of every cell: biconcave, the Evans-Fung "
+                  "red cell; sphere, a spherical capsule of the same "
+                  "Diameter (the validation runs, doc/validation.md).");
+    prm.add_parameter("Diameter",
+                      diameter,
+                      "Diameter 2R of the Evans-Fung biconcave reference "
+                      "shape [µm]; its thickness scales with it. Must be "
+                      "smaller than the capillary diameter.",
+                      Patterns::Double(0.));
+    prm.add_parameter("Surface refinements",
+                      surface_refinements,
+                      "Global refinements of each membrane surface mesh; the "
+                      "coarse mesh has 6 quadrilaterals, each refinement "
+                      "multiplies that by 4.",
+                      Patterns::Integer(0, 7));
+    prm.add_parameter("Axis",
+                      axis,
+                      "Direction of every cell's symmetry axis (x, y, z; "
+                      "normalised). The default 1,0,0 is the capillary axis: "
+                      "the cells face the flow, as in the paper.",
+                      Patterns::List(Patterns::Double(), 3, 3, ","));
+    // Every direction is kept as a unit vector; validate() rejects zero.
+    prm.add_action("Axis", [this](const std::string &) {
+      if (axis.norm() > 0.)
+        axis /= axis.norm();
+    });
+    prm.leave_subsection();
+  }
+
+  void
+  CellParameters::validate() const
+  {
+    if (axis.norm() == 0.)
+      throw InputError("Cells/Axis",
+                       Patterns::Tools::to_string(axis),
+                       "a direction must be nonzero.");
+    require_positive("Cells/Diameter", diameter);
+  }
+
+  const SelectionNames<LayoutKind> &
+  layout_kind_names()
+  {
+    static const SelectionNames<LayoutKind> names{
+      {LayoutKind::uniform, "uniform"},
+      {LayoutKind::random, "random"},
+      {LayoutKind::clustered, "clustered"}};
+    return names;
+  }
+
+  void
+  LayoutParameters::add_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Layout");
+    add_selection(prm,
+                  "Kind",
+                  kind,
+                  layout_kind_names(),
+                  "uniform: equal spacing over the segment; random: "
+                  "positions drawn from Seed, uniformly over all "
+                  "non-overlapping arrangements; clustered: cells stacked "
+                  "at Minimum gap, the group placed by Cluster position.");
+    prm.add_parameter("Number of cells",
+                      n_cells,
+                      "Number of red cells in the segment. At most "
+                      "floor(length / (cell length + Minimum gap)) fit.",
+                      Patterns::Integer(0));
+    prm.add_parameter("Seed",
+                      seed,
+                      "Seed of the random layout; the same seed gives the "
+                      "same layout on any number of MPI ranks.",
+                      Patterns::Integer(0));
+    prm.add_parameter("Minimum gap",
+                      minimum_gap,
+                      "Smallest distance between the surfaces of two "
+                      "neighbouring cells [µm]; cells keep half of it from the "
+                      "segment's end faces.",
+                      Patterns::Double(0.));
+    prm.add_parameter("Cluster position",
+                      cluster_position,
+                      "Centre of the clustered group as a fraction of the "
+                      "capillary length (0.5: centred).",
+                      Patterns::Double(0., 1.));
+    prm.leave_subsection();
+  }
+
+  void
+  LayoutParameters::validate() const
+  {
+    if (!(minimum_gap > 0.))
+      throw InputError("Layout/Minimum gap",
+                       to_text(minimum_gap),
+                       "it must be > 0 µm: cells must not touch.");
+  }
+} // namespace rbc_ifem

@@ -1,5 +1,5 @@
-#ifndef rbc_ifem_cell_population_h
-#define rbc_ifem_cell_population_h
+#ifndef rbc_ifem_coupling_cell_population_h
+#define rbc_ifem_coupling_cell_population_h
 
 #include <rbc_ifem/coupling/cell_force.h>
 #include <rbc_ifem/geometry/cell_membranes.h>

@@ -1,5 +1,5 @@
-#ifndef rbc_ifem_immersed_coupling_h
-#define rbc_ifem_immersed_coupling_h
+#ifndef rbc_ifem_coupling_immersed_coupling_h
+#define rbc_ifem_coupling_immersed_coupling_h
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>

@@ -1,5 +1,5 @@
-#ifndef rbc_ifem_co_diffusion_h
-#define rbc_ifem_co_diffusion_h
+#ifndef rbc_ifem_diffusion_co_diffusion_h
+#define rbc_ifem_diffusion_co_diffusion_h
 
 #include <rbc_ifem/diffusion/parameters.h>
 

@@ -1,5 +1,5 @@
-#ifndef rbc_ifem_fluid_problem_h
-#define rbc_ifem_fluid_problem_h
+#ifndef rbc_ifem_fluid_fluid_problem_h
+#define rbc_ifem_fluid_fluid_problem_h
 
 #include <rbc_ifem/fluid/parameters.h>
 #include <rbc_ifem/geometry/parameters.h>

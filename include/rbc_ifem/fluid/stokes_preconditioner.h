@@ -1,5 +1,5 @@
-#ifndef rbc_ifem_stokes_preconditioner_h
-#define rbc_ifem_stokes_preconditioner_h
+#ifndef rbc_ifem_fluid_stokes_preconditioner_h
+#define rbc_ifem_fluid_stokes_preconditioner_h
 
 #include <deal.II/lac/trilinos_block_sparse_matrix.h>
 #include <deal.II/lac/trilinos_parallel_block_vector.h>

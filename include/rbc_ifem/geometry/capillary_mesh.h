@@ -1,5 +1,5 @@
-#ifndef rbc_ifem_capillary_mesh_h
-#define rbc_ifem_capillary_mesh_h
+#ifndef rbc_ifem_geometry_capillary_mesh_h
+#define rbc_ifem_geometry_capillary_mesh_h
 
 #include <rbc_ifem/geometry/parameters.h>
 

@@ -1,5 +1,5 @@
-#ifndef rbc_ifem_cell_layout_h
-#define rbc_ifem_cell_layout_h
+#ifndef rbc_ifem_geometry_cell_layout_h
+#define rbc_ifem_geometry_cell_layout_h
 
 #include <rbc_ifem/geometry/cell_placement.h>
 #include <rbc_ifem/geometry/evans_fung.h>

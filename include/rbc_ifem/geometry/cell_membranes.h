@@ -1,5 +1,5 @@
-#ifndef rbc_ifem_cell_membranes_h
-#define rbc_ifem_cell_membranes_h
+#ifndef rbc_ifem_geometry_cell_membranes_h
+#define rbc_ifem_geometry_cell_membranes_h
 
 #include <rbc_ifem/base/csv.h>
 #include <rbc_ifem/geometry/cell_layout.h>

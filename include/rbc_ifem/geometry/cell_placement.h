@@ -1,5 +1,5 @@
-#ifndef rbc_ifem_cell_placement_h
-#define rbc_ifem_cell_placement_h
+#ifndef rbc_ifem_geometry_cell_placement_h
+#define rbc_ifem_geometry_cell_placement_h
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>

@@ -1,5 +1,5 @@
-#ifndef rbc_ifem_evans_fung_h
-#define rbc_ifem_evans_fung_h
+#ifndef rbc_ifem_geometry_evans_fung_h
+#define rbc_ifem_geometry_evans_fung_h
 
 #include <rbc_ifem/geometry/cell_placement.h>
 #include <rbc_ifem/geometry/parameters.h>

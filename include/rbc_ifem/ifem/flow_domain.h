@@ -1,5 +1,5 @@
-#ifndef rbc_ifem_flow_domain_h
-#define rbc_ifem_flow_domain_h
+#ifndef rbc_ifem_ifem_flow_domain_h
+#define rbc_ifem_ifem_flow_domain_h
 
 #include <rbc_ifem/fluid/fluid_problem.h>
 #include <rbc_ifem/geometry/cell_placement.h>

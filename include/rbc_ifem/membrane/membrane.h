@@ -1,5 +1,5 @@
-#ifndef rbc_ifem_membrane_h
-#define rbc_ifem_membrane_h
+#ifndef rbc_ifem_membrane_membrane_h
+#define rbc_ifem_membrane_membrane_h
 
 #include <rbc_ifem/membrane/elastic_law.h>
 #include <rbc_ifem/membrane/parameters.h>

@@ -1,5 +1,5 @@
-#ifndef rbc_ifem_membrane_equilibrium_h
-#define rbc_ifem_membrane_equilibrium_h
+#ifndef rbc_ifem_membrane_membrane_equilibrium_h
+#define rbc_ifem_membrane_membrane_equilibrium_h
 
 #include <rbc_ifem/membrane/membrane.h>
 

@@ -1,5 +1,5 @@
-#ifndef rbc_ifem_axisymmetric_sphere_in_tube_h
-#define rbc_ifem_axisymmetric_sphere_in_tube_h
+#ifndef rbc_ifem_reference_axisymmetric_sphere_in_tube_h
+#define rbc_ifem_reference_axisymmetric_sphere_in_tube_h
 
 namespace rbc_ifem
 {

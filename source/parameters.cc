@@ -1,4 +1,5 @@
 #include <rbc_ifem/base/input_error.h>
+#include <rbc_ifem/base/parameter_tools.h>
 #include <rbc_ifem/parameters.h>
 
 #include <filesystem>
@@ -8,10 +9,11 @@ namespace rbc_ifem
   void
   Parameters::add_parameters(ParameterHandler &prm)
   {
-    prm.add_parameter("Output directory",
-                      output_directory,
-                      "Where the run writes its files; created if needed.",
-                      Patterns::DirectoryName());
+    add_parameter(prm,
+                  "Output directory",
+                  output_directory,
+                  "Where the run writes its files; created if needed.",
+                  Patterns::DirectoryName());
     geometry.add_parameters(prm);
     mesh.add_parameters(prm);
     cells.add_parameters(prm);

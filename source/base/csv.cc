@@ -19,12 +19,6 @@ namespace rbc_ifem
     rows.push_back(row);
   }
 
-  unsigned int
-  CsvTable::n_rows() const
-  {
-    return rows.size();
-  }
-
   void
   CsvTable::write(const std::string &path) const
   {

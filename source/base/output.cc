@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 
 namespace rbc_ifem
@@ -106,17 +107,23 @@ namespace rbc_ifem
     return list;
   }
 
+  std::string
+  parameter_text(const ParameterHandler &prm)
+  {
+    std::ostringstream text;
+    prm.print_parameters(text, ParameterHandler::PRM);
+    return text.str();
+  }
+
   void
-  write_parameters(const ParameterHandler &prm,
-                   const std::string      &directory,
-                   const MPI_Comm          communicator)
+  write_parameters(const std::string &text,
+                   const std::string &directory,
+                   const MPI_Comm     communicator)
   {
     create_output_directory(directory, communicator);
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
       write_file_atomically(directory + "/parameters.prm",
-                            [&](std::ostream &out) {
-                              prm.print_parameters(out, ParameterHandler::PRM);
-                            });
+                            [&](std::ostream &out) { out << text; });
   }
 
   void

@@ -61,8 +61,13 @@ namespace rbc_ifem
     for (Vector<double> &f : forces)
       f = 0.;
     external_force = 0.;
+    total_energy   = 0.;
     for (const auto &force : cell_forces)
-      external_force += force->add_forces(x, forces).external_force;
+      {
+        const CellForceReport report = force->add_forces(x, forces);
+        external_force += report.external_force;
+        total_energy += report.energy;
+      }
 
     std::vector<Tensor<1, 3>> result;
     result.reserve(n_membrane_points);
@@ -77,6 +82,12 @@ namespace rbc_ifem
   CellPopulation::held_force() const
   {
     return external_force;
+  }
+
+  double
+  CellPopulation::energy() const
+  {
+    return total_energy;
   }
 
   const std::vector<std::unique_ptr<Membrane>> &

@@ -7,12 +7,6 @@ namespace rbc_ifem
     : membranes(membranes)
   {}
 
-  std::string
-  MembraneElasticity::name() const
-  {
-    return "membrane elasticity";
-  }
-
   CellForceReport
   MembraneElasticity::add_forces(const std::vector<Vector<double>> &x,
                                  std::vector<Vector<double>> &forces) const
@@ -33,12 +27,6 @@ namespace rbc_ifem
     : membranes(membranes)
     , stiffness(stiffness)
   {}
-
-  std::string
-  Tether::name() const
-  {
-    return "tether";
-  }
 
   CellForceReport
   Tether::add_forces(const std::vector<Vector<double>> &x,

@@ -1,4 +1,5 @@
 #include <rbc_ifem/base/input_error.h>
+#include <rbc_ifem/base/parameter_tools.h>
 #include <rbc_ifem/diffusion/parameters.h>
 #include <rbc_ifem/geometry/capillary_mesh.h>
 
@@ -12,25 +13,27 @@ namespace rbc_ifem
   DiffusionParameters::add_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Diffusion");
-    prm.add_parameter("Alveolar pressure",
-                      alveolar_pressure,
-                      "CO partial pressure P_A on the outer surface of the gas "
-                      "layer [Torr]. DM = CO flow / P_A does not depend on it.",
-                      Patterns::Double(0.));
+    add_parameter(prm,
+                  "Alveolar pressure",
+                  alveolar_pressure,
+                  "CO partial pressure P_A on the outer surface of the gas "
+                  "layer [Torr]. DM = CO flow / P_A does not depend on it.",
+                  Patterns::Double(0.));
     const auto add_material = [&](const std::string &name,
                                   double            &diffusivity,
                                   double            &solubility,
                                   const std::string &note) {
-      prm.add_parameter(name + " diffusivity",
-                        diffusivity,
-                        "CO diffusion coefficient D in the " + note +
-                          " [µm²/s].",
-                        Patterns::Double(0.));
-      prm.add_parameter(name + " solubility",
-                        solubility,
-                        "CO solubility α in the " + note +
-                          " [Torr⁻¹, volume of CO (STPD) per volume per Torr].",
-                        Patterns::Double(0.));
+      add_parameter(prm,
+                    name + " diffusivity",
+                    diffusivity,
+                    "CO diffusion coefficient D in the " + note + " [µm²/s].",
+                    Patterns::Double(0.));
+      add_parameter(prm,
+                    name + " solubility",
+                    solubility,
+                    "CO solubility α in the " + note +
+                      " [Torr⁻¹, volume of CO (STPD) per volume per Torr].",
+                    Patterns::Double(0.));
     };
     add_material("Plasma",
                  plasma_diffusivity,
@@ -46,29 +49,32 @@ namespace rbc_ifem
                  "alveolar gas. D from the paper's Table 2; α of an ideal "
                  "gas at 37 °C in the same units: (1/760) (273.15/310.15) "
                  "= 1.159e-3");
-    prm.add_parameter(
-      "Finite element degree",
-      degree,
-      "Degree k of the continuous FE_Q<3>(k) for P (the mapping "
-      "has the same degree).",
-      Patterns::Integer(1, 3));
-    prm.add_parameter("Augmentation",
-                      augmentation,
-                      "Augmented-Lagrangian weight γ (dimensionless) of the "
-                      "membrane constraint. It does not change the solution, "
-                      "only the solver: larger γ makes the multiplier block "
-                      "easier and the P block harder. See doc/diffusion.md.",
-                      Patterns::Double(0.));
-    prm.add_parameter("Linear solver tolerance",
-                      linear_tolerance,
-                      "FGMRES stops when the residual has fallen by this "
-                      "factor.",
-                      Patterns::Double(0.));
-    prm.add_parameter("Max linear iterations",
-                      max_linear_iterations,
-                      "FGMRES gives up (and the run stops) after this many "
-                      "iterations.",
-                      Patterns::Integer(1));
+    add_parameter(prm,
+                  "Finite element degree",
+                  degree,
+                  "Degree k of the continuous FE_Q<3>(k) for P (the mapping "
+                  "has the same degree).",
+                  Patterns::Integer(1, 3));
+    add_parameter(prm,
+                  "Augmentation",
+                  augmentation,
+                  "Augmented-Lagrangian weight γ (dimensionless) of the "
+                  "membrane constraint. It does not change the solution, "
+                  "only the solver: larger γ makes the multiplier block "
+                  "easier and the P block harder. See doc/diffusion.md.",
+                  Patterns::Double(0.));
+    add_parameter(prm,
+                  "Linear solver tolerance",
+                  linear_tolerance,
+                  "FGMRES stops when the residual has fallen by this "
+                  "factor.",
+                  Patterns::Double(0.));
+    add_parameter(prm,
+                  "Max linear iterations",
+                  max_linear_iterations,
+                  "FGMRES gives up (and the run stops) after this many "
+                  "iterations.",
+                  Patterns::Integer(1));
     prm.leave_subsection();
   }
 

@@ -1,3 +1,5 @@
+#include <rbc_ifem/base/csv.h>
+#include <rbc_ifem/base/output.h>
 #include <rbc_ifem/diffusion/co_diffusion.h>
 #include <rbc_ifem/diffusion/uptake.h>
 #include <rbc_ifem/geometry/capillary_mesh.h>
@@ -61,5 +63,39 @@ namespace rbc_ifem
     uptake.iterations = diffusion.n_iterations();
     uptake.seconds    = clock.wall_time();
     return uptake;
+  }
+
+  std::string
+  dm_header(const unsigned int n_cells)
+  {
+    std::string header = "time,dm_total";
+    for (unsigned int c = 0; c < n_cells; ++c)
+      header += ",dm_cell_" + std::to_string(c);
+    return header;
+  }
+
+  std::string
+  dm_row(const double time, const Uptake &uptake)
+  {
+    CsvRow row;
+    row << time << uptake.dm_total;
+    for (const double dm : uptake.dm_cells)
+      row << dm;
+    return row.str();
+  }
+
+  void
+  UptakeFields::write(const CODiffusion &diffusion,
+                      const std::string &directory,
+                      const double       time,
+                      const unsigned int counter,
+                      const MPI_Comm     communicator)
+  {
+    const CODiffusion::OutputFiles files =
+      diffusion.write_output(directory, "diffusion", counter);
+    pressure.emplace_back(time, files.pressure);
+    membranes.emplace_back(time, files.membranes);
+    write_pvd(directory, "diffusion", pressure, communicator);
+    write_pvd(directory, "diffusion_membranes", membranes, communicator);
   }
 } // namespace rbc_ifem

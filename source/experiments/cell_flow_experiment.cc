@@ -7,18 +7,21 @@ namespace rbc_ifem
                                          const Parameters       &parameters,
                                          const ParameterHandler &prm,
                                          const MPI_Comm          communicator)
-    : Experiment(name, parameters, prm, communicator)
+    : Experiment(name,
+                 parameters,
+                 prm,
+                 communicator,
+                 ParametersFile::before_work)
+  {}
+
+  void
+  CellFlowExperiment::setup()
   {
     if (parameters.layout.n_cells == 0)
       throw InputError("Layout/Number of cells",
                        "0",
                        "a flow with Immersed cells/Enabled = true needs at "
                        "least one cell.");
-  }
-
-  void
-  CellFlowExperiment::setup()
-  {
     pcout << "  with immersed cells ("
           << name_of(parameters.fluid.model, fluid_model_names()) << ')'
           << std::endl;

@@ -9,7 +9,9 @@ namespace rbc_ifem
   DiffusionExperiment::setup()
   {
     cells =
-      std::make_unique<const PlacedCells>(parameters,
+      std::make_unique<const PlacedCells>(parameters.layout,
+                                          parameters.geometry,
+                                          parameters.cells,
                                           parameters.cells.surface_refinements);
   }
 
@@ -18,13 +20,8 @@ namespace rbc_ifem
   {
     const std::string &directory    = parameters.output_directory;
     const auto         write_fields = [&](const CODiffusion &diffusion) {
-      const CODiffusion::OutputFiles files =
-        diffusion.write_output(directory, "diffusion");
-      write_pvd(directory, "diffusion", {{0., files.pressure}}, communicator);
-      write_pvd(directory,
-                "diffusion_membranes",
-                {{0., files.membranes}},
-                communicator);
+      create_output_directory(directory, communicator);
+      UptakeFields().write(diffusion, directory, 0., 0, communicator);
     };
     const Uptake uptake =
       solve(*cells, parameters.mesh.diffusion_band_refinements, write_fields);
@@ -37,16 +34,8 @@ namespace rbc_ifem
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
       {
         cells->membranes.table().write(directory + "/cells.csv");
-        std::string header = "time,dm_total";
-        CsvRow      row;
-        row << 0. << uptake.dm_total;
-        for (unsigned int c = 0; c < uptake.dm_cells.size(); ++c)
-          {
-            header += ",dm_cell_" + std::to_string(c);
-            row << uptake.dm_cells[c];
-          }
-        CsvTable dm(header);
-        dm.add_row(row.str());
+        CsvTable dm(dm_header(uptake.dm_cells.size()));
+        dm.add_row(dm_row(0., uptake));
         dm.write(directory + "/dm.csv");
       }
   }

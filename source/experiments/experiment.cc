@@ -8,13 +8,15 @@ namespace rbc_ifem
   Experiment::Experiment(const std::string      &name,
                          const Parameters       &parameters,
                          const ParameterHandler &prm,
-                         const MPI_Comm          communicator)
+                         const MPI_Comm          communicator,
+                         const ParametersFile    parameters_file)
     : name(name)
     , parameters(parameters)
-    , prm(prm)
     , communicator(communicator)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
     , timer(MPI_COMM_SELF, pcout, TimerOutput::never, TimerOutput::wall_times)
+    , parameter_file_text(parameter_text(prm))
+    , parameters_file(parameters_file)
   {}
 
   void
@@ -30,8 +32,11 @@ namespace rbc_ifem
     setup();
 
     const std::string &directory = parameters.output_directory;
-    write_parameters(prm, directory, communicator);
+    if (parameters_file == ParametersFile::before_work)
+      write_parameters(parameter_file_text, directory, communicator);
     execute();
+    if (parameters_file == ParametersFile::after_work)
+      write_parameters(parameter_file_text, directory, communicator);
 
     write_timing(timer, directory, communicator);
     pcout << "  wrote " << directory << "/: " << written_files(directory)

@@ -1,5 +1,6 @@
 #include <rbc_ifem/base/csv.h>
 #include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/solver_failure.h>
 #include <rbc_ifem/experiments/flow_experiment.h>
 #include <rbc_ifem/geometry/capillary_mesh.h>
 
@@ -11,7 +12,11 @@ namespace rbc_ifem
                                  const Parameters       &parameters,
                                  const ParameterHandler &prm,
                                  const MPI_Comm          communicator)
-    : Experiment(name, parameters, prm, communicator)
+    : Experiment(name,
+                 parameters,
+                 prm,
+                 communicator,
+                 ParametersFile::before_work)
     , triangulation(communicator,
                     Triangulation<3>::none,
                     false,
@@ -56,9 +61,20 @@ namespace rbc_ifem
     std::vector<std::pair<double, std::string>> fields;
     for (unsigned int step = 1; step <= parameters.time.n_steps; ++step)
       {
-        const double       time   = step * parameters.time.time_step;
-        const StepReport   report = fluid.advance();
-        const FlowMeasures m      = fluid.measure();
+        const double time = step * parameters.time.time_step;
+        StepReport   report;
+        try
+          {
+            report = fluid.advance();
+          }
+        catch (const SolverFailure &)
+          {
+            // The table up to the last good step, then stop.
+            if (root)
+              table.write(directory + "/flow.csv");
+            throw;
+          }
+        const FlowMeasures m = fluid.measure();
         table.add(time,
                   m.flow_rate,
                   m.pressure_drop,
@@ -67,8 +83,6 @@ namespace rbc_ifem
                   parameters.fluid.frame_velocity,
                   report.newton_iterations,
                   report.linear_iterations);
-        if (root)
-          table.write(directory + "/flow.csv");
         pcout << "  step " << step << ", t = " << time
               << " s: " << report.newton_iterations << " Newton, "
               << report.linear_iterations << " FGMRES iterations, residual "
@@ -81,6 +95,8 @@ namespace rbc_ifem
           {
             fields.emplace_back(time, fluid.write_vtu(directory, step));
             write_pvd(directory, "flow", fields, communicator);
+            if (root)
+              table.write(directory + "/flow.csv");
           }
       }
   }

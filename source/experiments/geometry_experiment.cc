@@ -8,11 +8,11 @@ namespace rbc_ifem
                                          const Parameters       &parameters,
                                          const ParameterHandler &prm,
                                          const MPI_Comm          communicator)
-    : Experiment(name, parameters, prm, communicator)
-    , layout(parameters.layout, parameters.geometry, parameters.cells)
-    , membranes(layout.placements(),
-                EvansFungShape::of(parameters.cells),
-                parameters.cells.surface_refinements)
+    : Experiment(name,
+                 parameters,
+                 prm,
+                 communicator,
+                 ParametersFile::after_work)
     , fluid_mesh(communicator,
                  Triangulation<3>::none,
                  false,
@@ -26,11 +26,21 @@ namespace rbc_ifem
   void
   GeometryExperiment::setup()
   {
+    layout = std::make_unique<const CellLayout>(parameters.layout,
+                                                parameters.geometry,
+                                                parameters.cells);
+    {
+      TimerOutput::Scope scope(timer, "membranes");
+      membranes = std::make_unique<const CellMembranes>(
+        layout->placements(),
+        EvansFungShape::of(parameters.cells),
+        parameters.cells.surface_refinements);
+    }
     pcout << "  layout: "
           << name_of(parameters.layout.kind, layout_kind_names()) << ", "
-          << layout.placements().size() << " of at most " << layout.max_cells()
-          << " cells, cell length along the axis " << layout.cell_length()
-          << " µm" << std::endl;
+          << layout->placements().size() << " of at most "
+          << layout->max_cells() << " cells, cell length along the axis "
+          << layout->cell_length() << " µm" << std::endl;
     report_membranes();
     create_meshes();
   }
@@ -39,16 +49,17 @@ namespace rbc_ifem
   GeometryExperiment::report_membranes()
   {
     TimerOutput::Scope scope(timer, "clearance check");
-    pcout << "  membranes: " << membranes.size() << " x "
-          << (membranes.size() == 0 ? 0 :
-                                      membranes.surfaces()[0]->n_active_cells())
+    pcout << "  membranes: " << membranes->size() << " x "
+          << (membranes->size() == 0 ?
+                0 :
+                membranes->surfaces()[0]->n_active_cells())
           << " quadrilaterals; tube hematocrit "
-          << layout.hematocrit(membranes.volumes()) << std::endl;
+          << layout->hematocrit(membranes->volumes()) << std::endl;
     const Clearance clearance =
-      membranes.require_clearance(parameters.geometry.capillary_radius);
+      membranes->require_clearance(parameters.geometry.capillary_radius);
     pcout << "  clearance: nearest membranes " << clearance.min_cell_gap
           << " µm apart";
-    if (membranes.size() > 1)
+    if (membranes->size() > 1)
       pcout << " (cells " << clearance.closest_cells.first << " and "
             << clearance.closest_cells.second << ')';
     pcout << ", nearest wall " << clearance.min_wall_gap << " µm away"
@@ -58,7 +69,7 @@ namespace rbc_ifem
   void
   GeometryExperiment::create_meshes()
   {
-    const std::vector<Point<3>> points = membranes.vertices();
+    const std::vector<Point<3>> points = membranes->vertices();
     {
       TimerOutput::Scope scope(timer, "fluid mesh");
       create_fluid_mesh(fluid_mesh,
@@ -89,18 +100,19 @@ namespace rbc_ifem
   {
     TimerOutput::Scope scope(timer, "output");
     const std::string &directory = parameters.output_directory;
+    create_output_directory(directory, communicator);
     write_volume_mesh(fluid_mesh, directory, "fluid_mesh", communicator);
     write_volume_mesh(diffusion_mesh,
                       directory,
                       "diffusion_mesh",
                       communicator);
-    const std::string membrane_file = write_membranes(membranes.surfaces(),
-                                                      membranes.mapping(),
+    const std::string membrane_file = write_membranes(membranes->surfaces(),
+                                                      membranes->mapping(),
                                                       directory,
                                                       "membranes",
                                                       communicator);
     write_pvd(directory, "membranes", {{0., membrane_file}}, communicator);
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
-      membranes.table().write(directory + "/cells.csv");
+      membranes->table().write(directory + "/cells.csv");
   }
 } // namespace rbc_ifem

@@ -1,5 +1,7 @@
 #include <rbc_ifem/base/csv.h>
 #include <rbc_ifem/base/input_error.h>
+#include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/parameter_tools.h>
 #include <rbc_ifem/experiments/layouts_experiment.h>
 
 #include <cmath>
@@ -16,17 +18,19 @@ namespace rbc_ifem
                   kinds,
                   layout_kind_names(),
                   "Experiment 'layouts': the layout kinds to compare.");
-    prm.add_parameter("Numbers of cells",
-                      numbers_of_cells,
-                      "Experiment 'layouts': the numbers of cells N to place "
-                      "in the segment, each in every kind.",
-                      Patterns::List(Patterns::Integer(1), 1));
-    prm.add_parameter("Random seeds",
-                      n_seeds,
-                      "Experiment 'layouts': random layouts are drawn with "
-                      "seeds Layout/Seed, Layout/Seed + 1, ...; layouts.csv "
-                      "reports their mean and spread.",
-                      Patterns::Integer(1));
+    add_parameter(prm,
+                  "Numbers of cells",
+                  numbers_of_cells,
+                  "Experiment 'layouts': the numbers of cells N to place "
+                  "in the segment, each in every kind.",
+                  Patterns::List(Patterns::Integer(1), 1));
+    add_parameter(prm,
+                  "Random seeds",
+                  n_seeds,
+                  "Experiment 'layouts': random layouts are drawn with "
+                  "seeds Layout/Seed, Layout/Seed + 1, ...; layouts.csv "
+                  "reports their mean and spread.",
+                  Patterns::Integer(1));
     prm.leave_subsection();
   }
 
@@ -70,8 +74,9 @@ namespace rbc_ifem
               layout.n_cells          = n;
               layout.seed             = parameters.layout.seed + sample;
               samples.back().push_back(std::make_unique<const PlacedCells>(
-                parameters,
                 study_layout(layout),
+                parameters.geometry,
+                parameters.cells,
                 parameters.cells.surface_refinements));
             }
         }
@@ -113,6 +118,7 @@ namespace rbc_ifem
                   std::sqrt(variance),
                   dm.size());
       }
+    create_output_directory(parameters.output_directory, communicator);
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
       table.write(parameters.output_directory + "/layouts.csv");
   }

@@ -1,4 +1,6 @@
 #include <rbc_ifem/base/csv.h>
+#include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/parameter_tools.h>
 #include <rbc_ifem/experiments/mesh_convergence_experiment.h>
 
 #include <cmath>
@@ -9,13 +11,14 @@ namespace rbc_ifem
   MeshConvergenceParameters::add_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Mesh convergence");
-    prm.add_parameter("Number of levels",
-                      n_levels,
-                      "Experiment 'mesh convergence': level 0 is the mesh of "
-                      "subsection Mesh and Cells/Surface refinements; each "
-                      "further level refines the diffusion mesh's band and "
-                      "the membranes once more.",
-                      Patterns::Integer(2, 6));
+    add_parameter(prm,
+                  "Number of levels",
+                  n_levels,
+                  "Experiment 'mesh convergence': level 0 is the mesh of "
+                  "subsection Mesh and Cells/Surface refinements; each "
+                  "further level refines the diffusion mesh's band and "
+                  "the membranes once more.",
+                  Patterns::Integer(2, 6));
     prm.leave_subsection();
   }
 
@@ -33,7 +36,9 @@ namespace rbc_ifem
   MeshConvergenceExperiment::setup()
   {
     coarsest =
-      std::make_unique<const PlacedCells>(parameters,
+      std::make_unique<const PlacedCells>(parameters.layout,
+                                          parameters.geometry,
+                                          parameters.cells,
                                           parameters.cells.surface_refinements);
   }
 
@@ -46,7 +51,10 @@ namespace rbc_ifem
       {
         if (level > 0)
           cells = std::make_unique<const PlacedCells>(
-            parameters, parameters.cells.surface_refinements + level);
+            parameters.layout,
+            parameters.geometry,
+            parameters.cells,
+            parameters.cells.surface_refinements + level);
         levels.push_back(
           solve(*cells, parameters.mesh.diffusion_band_refinements + level));
         report("level " + std::to_string(level) + ", " +
@@ -87,6 +95,7 @@ namespace rbc_ifem
             << u.seconds << std::abs(u.dm_total - limit) / limit;
         table.add_row(row.str());
       }
+    create_output_directory(parameters.output_directory, communicator);
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
       table.write(parameters.output_directory + "/convergence.csv");
   }

@@ -1,4 +1,6 @@
 #include <rbc_ifem/base/input_error.h>
+#include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/parameter_tools.h>
 #include <rbc_ifem/experiments/cell_flow_experiment.h>
 #include <rbc_ifem/experiments/diffusion_experiment.h>
 #include <rbc_ifem/experiments/flow_experiment.h>
@@ -28,10 +30,11 @@ namespace rbc_ifem
       return {name,
               documentation,
               nullptr,
-              [name](const Parameters &parameters,
-                     const ExperimentParameters *,
-                     const ParameterHandler &prm,
-                     const MPI_Comm          communicator) {
+              [](const std::string &name,
+                 const Parameters  &parameters,
+                 const ExperimentParameters *,
+                 const ParameterHandler &prm,
+                 const MPI_Comm          communicator) {
                 return std::make_unique<ExperimentClass>(name,
                                                          parameters,
                                                          prm,
@@ -47,10 +50,11 @@ namespace rbc_ifem
       return {name,
               documentation,
               [] { return std::make_unique<OwnParameters>(); },
-              [name](const Parameters           &parameters,
-                     const ExperimentParameters *own,
-                     const ParameterHandler     &prm,
-                     const MPI_Comm              communicator) {
+              [](const std::string          &name,
+                 const Parameters           &parameters,
+                 const ExperimentParameters *own,
+                 const ParameterHandler     &prm,
+                 const MPI_Comm              communicator) {
                 return std::make_unique<ExperimentClass>(
                   name,
                   parameters,
@@ -62,17 +66,18 @@ namespace rbc_ifem
 
     /// "flow" is the plasma alone, or with the immersed cells.
     std::unique_ptr<Experiment>
-    create_flow(const Parameters &parameters,
+    create_flow(const std::string &name,
+                const Parameters  &parameters,
                 const ExperimentParameters *,
                 const ParameterHandler &prm,
                 const MPI_Comm          communicator)
     {
       if (parameters.immersed.enabled)
-        return std::make_unique<CellFlowExperiment>("flow",
+        return std::make_unique<CellFlowExperiment>(name,
                                                     parameters,
                                                     prm,
                                                     communicator);
-      return std::make_unique<FlowExperiment>("flow",
+      return std::make_unique<FlowExperiment>(name,
                                               parameters,
                                               prm,
                                               communicator);
@@ -129,16 +134,18 @@ namespace rbc_ifem
 
   RunParameters::RunParameters()
   {
-    std::string names, documentation = "What to run.";
+    std::vector<std::string> names;
+    std::string              documentation = "What to run.";
     for (const ExperimentType &type : experiment_types())
       {
-        names += (names.empty() ? "" : "|") + type.name;
+        names.push_back(type.name);
         documentation += " " + type.name + ": " + type.documentation;
       }
-    prm.add_parameter("Experiment",
-                      experiment,
-                      documentation,
-                      Patterns::Selection(names));
+    add_parameter(prm,
+                  "Experiment",
+                  experiment,
+                  documentation,
+                  Patterns::Selection(join_names(names)));
     parameters.add_parameters(prm);
     for (const ExperimentType &type : experiment_types())
       {
@@ -173,12 +180,10 @@ namespace rbc_ifem
   }
 
   void
-  RunParameters::derive(const ParameterHandler             &other,
+  RunParameters::derive(const std::string                  &text,
                         const std::vector<ParameterChange> &changes)
   {
-    std::ostringstream text;
-    other.print_parameters(text, ParameterHandler::PRM);
-    prm.parse_input_from_string(text.str());
+    prm.parse_input_from_string(text);
     for (const ParameterChange &change : changes)
       {
         if (!change.subsection.empty())
@@ -214,10 +219,8 @@ namespace rbc_ifem
   RunParameters::create_experiment(const MPI_Comm communicator) const
   {
     const unsigned int t = chosen();
-    return experiment_types()[t].create(parameters,
-                                        own[t].get(),
-                                        prm,
-                                        communicator);
+    return experiment_types()[t].create(
+      experiment_types()[t].name, parameters, own[t].get(), prm, communicator);
   }
 
   const Parameters &
@@ -235,6 +238,6 @@ namespace rbc_ifem
   void
   RunParameters::print(std::ostream &out) const
   {
-    prm.print_parameters(out, ParameterHandler::PRM);
+    out << parameter_text(prm);
   }
 } // namespace rbc_ifem

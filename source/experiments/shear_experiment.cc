@@ -1,6 +1,7 @@
 #include <rbc_ifem/base/csv.h>
 #include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/parameter_tools.h>
 #include <rbc_ifem/coupling/cell_population.h>
 #include <rbc_ifem/coupling/time_step_limit.h>
 #include <rbc_ifem/experiments/registry.h>
@@ -21,52 +22,59 @@ namespace rbc_ifem
   ShearParameters::add_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Shear");
-    prm.add_parameter("Shear rate",
-                      shear_rate,
-                      "Experiment 'shear': the rate γ̇ of the simple shear "
-                      "v = (γ̇ y, 0, 0) the box walls impose [1/s]. Results "
-                      "depend on it only through the capillary number.",
-                      Patterns::Double(0.));
-    prm.add_parameter("Capillary numbers",
-                      capillary_numbers,
-                      "One run per Ca = μ a γ̇ / G, a the capsule radius "
-                      "(Cells/Diameter / 2) and G the membrane's shear "
-                      "modulus: every modulus of subsection Membrane is "
-                      "scaled by the same factor to give this G, so their "
-                      "ratios are kept.",
-                      Patterns::List(Patterns::Double(0.), 1));
-    prm.add_parameter("Box size",
-                      box,
-                      "Length (x, the flow direction; the ends x = ±L/2 are "
-                      "open), height (y, between the moving walls) and width "
-                      "(z, walls moving with the shear) of the box, centred "
-                      "on the capsule [µm]. Each must be a multiple of "
-                      "Cells/Diameter, the coarse mesh's cell size.",
-                      Patterns::List(Patterns::Double(0.), 3, 3, ","));
-    prm.add_parameter("Total strain",
-                      strain,
-                      "Each run lasts until γ̇ t reaches this.",
-                      Patterns::Double(0.));
-    prm.add_parameter("Averaging strain",
-                      averaging_strain,
-                      "The steady deformation is the mean over the steadiest "
-                      "window of this length in γ̇ t: the one over which D "
-                      "changes least. Without bending stiffness the membrane "
-                      "of a capsule at small Ca wrinkles late in a run and D "
-                      "creeps up (doc/validation.md); the window finds the "
-                      "plateau before that.",
-                      Patterns::Double(0.));
-    prm.add_parameter("Output strain interval",
-                      output_strain,
-                      "A shear.csv row, a cells.csv row and the VTU files "
-                      "every γ̇ t of this length.",
-                      Patterns::Double(0.));
-    prm.add_parameter("Time step fraction",
-                      time_step_fraction,
-                      "Δt of each run as a fraction of its explicit-coupling "
-                      "time step limit (doc/ifem.md), which scales with 1/G: "
-                      "small Ca take more steps. Time/Time step is not used.",
-                      Patterns::Double(0., 1.));
+    add_parameter(prm,
+                  "Shear rate",
+                  shear_rate,
+                  "Experiment 'shear': the rate γ̇ of the simple shear "
+                  "v = (γ̇ y, 0, 0) the box walls impose [1/s]. Results "
+                  "depend on it only through the capillary number.",
+                  Patterns::Double(0.));
+    add_parameter(prm,
+                  "Capillary numbers",
+                  capillary_numbers,
+                  "One run per Ca = μ a γ̇ / G, a the capsule radius "
+                  "(Cells/Diameter / 2) and G the membrane's shear "
+                  "modulus: every modulus of subsection Membrane is "
+                  "scaled by the same factor to give this G, so their "
+                  "ratios are kept.",
+                  Patterns::List(Patterns::Double(0.), 1));
+    add_parameter(prm,
+                  "Box size",
+                  box,
+                  "Length (x, the flow direction; the ends x = ±L/2 are "
+                  "open), height (y, between the moving walls) and width "
+                  "(z, walls moving with the shear) of the box, centred "
+                  "on the capsule [µm]. Each must be a multiple of "
+                  "Cells/Diameter, the coarse mesh's cell size.",
+                  Patterns::List(Patterns::Double(0.), 3, 3, ","));
+    add_parameter(prm,
+                  "Total strain",
+                  strain,
+                  "Each run lasts until γ̇ t reaches this.",
+                  Patterns::Double(0.));
+    add_parameter(prm,
+                  "Averaging strain",
+                  averaging_strain,
+                  "The steady deformation is the mean over the steadiest "
+                  "window of this length in γ̇ t: the one over which D "
+                  "changes least. Without bending stiffness the membrane "
+                  "of a capsule at small Ca wrinkles late in a run and D "
+                  "creeps up (doc/validation.md); the window finds the "
+                  "plateau before that.",
+                  Patterns::Double(0.));
+    add_parameter(prm,
+                  "Output strain interval",
+                  output_strain,
+                  "A shear.csv row, a cells.csv row and the VTU files "
+                  "every γ̇ t of this length.",
+                  Patterns::Double(0.));
+    add_parameter(prm,
+                  "Time step fraction",
+                  time_step_fraction,
+                  "Δt of each run as a fraction of its explicit-coupling "
+                  "time step limit (doc/ifem.md), which scales with 1/G: "
+                  "small Ca take more steps. Time/Time step is not used.",
+                  Patterns::Double(0., 1.));
     prm.leave_subsection();
   }
 
@@ -144,7 +152,11 @@ namespace rbc_ifem
                                    const ShearParameters  &shear,
                                    const ParameterHandler &prm,
                                    const MPI_Comm          communicator)
-    : Experiment(name, parameters, prm, communicator)
+    : Experiment(name,
+                 parameters,
+                 prm,
+                 communicator,
+                 ParametersFile::before_work)
     , shear(shear)
   {}
 
@@ -207,7 +219,7 @@ namespace rbc_ifem
 
     auto run = std::make_unique<RunParameters>();
     run->derive(
-      prm,
+      parameter_file_text,
       {{"",
         "Output directory",
         parameters.output_directory + "/ca_" + csv_row(capillary_number)},
@@ -227,7 +239,10 @@ namespace rbc_ifem
        {"Immersed cells", "Checkpoint interval", "0"},
        {"Immersed cells", "Resume", "false"},
        {"Immersed cells", "Progress interval", std::to_string(output_interval)},
-       {"Fluid", "Frame velocity", "0"}});
+       {"Fluid", "Frame velocity", "0"},
+       // The run's parameters.prm reruns this one run (in its own ca_<Ca>/):
+       // its moduli give this capillary number with a scale factor of 1.
+       {"Shear", "Capillary numbers", exact_text(capillary_number)}});
     return run;
   }
 
@@ -291,7 +306,9 @@ namespace rbc_ifem
                               run_timer);
     simulation.add_observer(deformation);
     simulation.setup();
-    write_parameters(run.handler(), p.output_directory, communicator);
+    write_parameters(parameter_text(run.handler()),
+                     p.output_directory,
+                     communicator);
     simulation.run();
     write_timing(run_timer, p.output_directory, communicator);
 

@@ -1,10 +1,13 @@
 #include <rbc_ifem/base/csv.h>
 #include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/parameter_tools.h>
+#include <rbc_ifem/base/solver_failure.h>
 #include <rbc_ifem/experiments/stretching_experiment.h>
 #include <rbc_ifem/geometry/cell_surface.h>
 #include <rbc_ifem/membrane/membrane_equilibrium.h>
 
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
 #include <algorithm>
@@ -17,33 +20,38 @@ namespace rbc_ifem
   StretchingParameters::add_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Stretching");
-    prm.add_parameter("Maximum force",
-                      max_force,
-                      "Experiment 'stretching': the largest total force F "
-                      "each bead pulls with [pN].",
-                      Patterns::Double(0.));
-    prm.add_parameter("Number of force steps",
-                      n_force_steps,
-                      "Equilibria at F = 0 and at this many equal steps up to "
-                      "the maximum force.",
-                      Patterns::Integer(1));
-    prm.add_parameter("Attached area fraction",
-                      attached_fraction,
-                      "Fraction of the membrane area each bead holds, at the "
-                      "two ends of a diameter. 0.025 is a contact region about "
-                      "2 µm across, as Dao et al. (2003) assume for the beads "
-                      "of the experiments.",
-                      Patterns::Double(0., 0.25));
-    prm.add_parameter("Residual tolerance",
-                      tolerance,
-                      "An equilibrium is found when no node's force "
-                      "imbalance exceeds this [pN].",
-                      Patterns::Double(0.));
-    prm.add_parameter("Max iterations",
-                      max_iterations,
-                      "L-BFGS iterations allowed per force step before the "
-                      "run stops.",
-                      Patterns::Integer(1));
+    add_parameter(prm,
+                  "Maximum force",
+                  max_force,
+                  "Experiment 'stretching': the largest total force F "
+                  "each bead pulls with [pN].",
+                  Patterns::Double(0.));
+    add_parameter(prm,
+                  "Number of force steps",
+                  n_force_steps,
+                  "Equilibria at F = 0 and at this many equal steps up to "
+                  "the maximum force.",
+                  Patterns::Integer(1));
+    add_parameter(prm,
+                  "Attached area fraction",
+                  attached_fraction,
+                  "Fraction of the membrane area each bead holds, at the "
+                  "two ends of a diameter. 0.025 is a contact region about "
+                  "2 µm across, as Dao et al. (2003) assume for the beads "
+                  "of the experiments.",
+                  Patterns::Double(0., 0.25));
+    add_parameter(prm,
+                  "Residual tolerance",
+                  tolerance,
+                  "An equilibrium is found when no node's force "
+                  "imbalance exceeds this [pN].",
+                  Patterns::Double(0.));
+    add_parameter(prm,
+                  "Max iterations",
+                  max_iterations,
+                  "L-BFGS iterations allowed per force step before the "
+                  "run stops.",
+                  Patterns::Integer(1));
     prm.leave_subsection();
   }
 
@@ -63,7 +71,11 @@ namespace rbc_ifem
     const StretchingParameters &stretching,
     const ParameterHandler     &prm,
     const MPI_Comm              communicator)
-    : Experiment(name, parameters, prm, communicator)
+    : Experiment(name,
+                 parameters,
+                 prm,
+                 communicator,
+                 ParametersFile::after_work)
     , stretching(stretching)
   {}
 
@@ -127,8 +139,26 @@ namespace rbc_ifem
   void
   StretchingExperiment::execute()
   {
-    if (Utilities::MPI::this_mpi_process(communicator) != 0)
-      return;
+    // Rank 0 works alone; the others must learn if it failed, or they
+    // would wait for it in the closing collectives.
+    std::string failure;
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      try
+        {
+          find_equilibria();
+        }
+      catch (const SolverFailure &e)
+        {
+          failure = e.what();
+        }
+    failure = Utilities::MPI::broadcast(communicator, failure, 0);
+    if (!failure.empty())
+      throw SolverFailure(failure);
+  }
+
+  void
+  StretchingExperiment::find_equilibria()
+  {
     const StretchingParameters &s          = stretching;
     const Vector<double>        unit_force = bead_forces();
     Vector<double>              x(membrane->reference_positions());
@@ -177,6 +207,7 @@ namespace rbc_ifem
 
     // Written only now: a failed equilibrium leaves no table or shape.
     const std::string &directory = parameters.output_directory;
+    create_output_directory(directory, MPI_COMM_SELF);
     {
       TimerOutput::Scope scope(timer, "output");
       for (unsigned int k = 0; k < shapes.size(); ++k)

@@ -4,31 +4,16 @@
 
 namespace rbc_ifem
 {
-  PlacedCells::PlacedCells(const Parameters  &parameters,
-                           const unsigned int surface_refinements)
-    : PlacedCells(parameters,
-                  CellLayout(parameters.layout,
-                             parameters.geometry,
-                             parameters.cells),
-                  surface_refinements)
+  UptakeExperiment::UptakeExperiment(const std::string      &name,
+                                     const Parameters       &parameters,
+                                     const ParameterHandler &prm,
+                                     const MPI_Comm          communicator)
+    : Experiment(name,
+                 parameters,
+                 prm,
+                 communicator,
+                 ParametersFile::after_work)
   {}
-
-  PlacedCells::PlacedCells(const Parameters  &parameters,
-                           const CellLayout  &layout,
-                           const unsigned int surface_refinements)
-    : layout(layout)
-    , membranes(layout.placements(),
-                EvansFungShape::of(parameters.cells),
-                surface_refinements)
-  {
-    membranes.require_clearance(parameters.geometry.capillary_radius);
-  }
-
-  double
-  PlacedCells::hematocrit() const
-  {
-    return layout.hematocrit(membranes.volumes());
-  }
 
   Uptake
   UptakeExperiment::solve(

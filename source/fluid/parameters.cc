@@ -1,4 +1,5 @@
 #include <rbc_ifem/base/input_error.h>
+#include <rbc_ifem/base/parameter_tools.h>
 #include <rbc_ifem/fluid/parameters.h>
 
 namespace rbc_ifem
@@ -23,50 +24,58 @@ namespace rbc_ifem
                   "Stokes: unsteady Stokes, the fast path (the capillary "
                   "Reynolds number is ~1e-5); Navier-Stokes: with the "
                   "convective term, Newton-Raphson in every time step.");
-    prm.add_parameter("Viscosity",
-                      viscosity,
-                      "Dynamic viscosity μ of plasma (and of the cytoplasm: "
-                      "viscosity ratio 1) [pN s/µm²]; 1.2e-3 is 1.2 mPa s.",
-                      Patterns::Double(0.));
-    prm.add_parameter("Density",
-                      density,
-                      "Density ρ [mg/µm³]; 1e-9 is 1000 kg/m³.",
-                      Patterns::Double(0.));
-    prm.add_parameter("Inlet mean speed",
-                      inlet_mean_speed,
-                      "Mean speed ū of the Poiseuille inflow at x = 0, "
-                      "u(r) = 2ū(1 - r²/R²) [µm/s]; capillary red cells move "
-                      "at 300-700 µm/s.",
-                      Patterns::Double());
-    prm.add_parameter("Frame velocity",
-                      frame_velocity,
-                      "Velocity U_frame of the computational frame along x "
-                      "[µm/s]: walls and inflow move at -U_frame in it. 0 is "
-                      "the laboratory frame.",
-                      Patterns::Double());
-    prm.add_parameter("Linear solver tolerance",
-                      linear_tolerance,
-                      "FGMRES stops when the residual is this fraction of the "
-                      "largest residual of the run (the problem's scale); "
-                      "1e-6 leaves the solution 1e-6 from exact, far below "
-                      "the discretisation error.",
-                      Patterns::Double(0.));
-    prm.add_parameter("Max linear iterations",
-                      max_linear_iterations,
-                      "FGMRES gives up (and the run stops) after this many "
-                      "iterations.",
-                      Patterns::Integer(1));
-    prm.add_parameter("Newton tolerance",
-                      newton_tolerance,
-                      "Navier-Stokes: Newton stops when the residual has "
-                      "fallen by this factor from its first value in the "
-                      "step.",
-                      Patterns::Double(0.));
-    prm.add_parameter("Max Newton iterations",
-                      max_newton_iterations,
-                      "Navier-Stokes: the run stops if Newton has not "
-                      "converged after this many iterations.",
-                      Patterns::Integer(1));
+    add_parameter(prm,
+                  "Viscosity",
+                  viscosity,
+                  "Dynamic viscosity μ of plasma (and of the cytoplasm: "
+                  "viscosity ratio 1) [pN s/µm²]; 1.2e-3 is 1.2 mPa s.",
+                  Patterns::Double(0.));
+    add_parameter(prm,
+                  "Density",
+                  density,
+                  "Density ρ [mg/µm³]; 1e-9 is 1000 kg/m³.",
+                  Patterns::Double(0.));
+    add_parameter(prm,
+                  "Inlet mean speed",
+                  inlet_mean_speed,
+                  "Mean speed ū of the Poiseuille inflow at x = 0, "
+                  "u(r) = 2ū(1 - r²/R²) [µm/s]; capillary red cells move "
+                  "at 300-700 µm/s.",
+                  Patterns::Double());
+    add_parameter(prm,
+                  "Frame velocity",
+                  frame_velocity,
+                  "Velocity U_frame of the computational frame along x "
+                  "[µm/s]: walls and inflow move at -U_frame in it. 0 is "
+                  "the laboratory frame.",
+                  Patterns::Double());
+    add_parameter(prm,
+                  "Linear solver tolerance",
+                  linear_tolerance,
+                  "FGMRES stops when the residual is this fraction of the "
+                  "largest residual of the run (the problem's scale); "
+                  "1e-6 leaves the solution 1e-6 from exact, far below "
+                  "the discretisation error.",
+                  Patterns::Double(0.));
+    add_parameter(prm,
+                  "Max linear iterations",
+                  max_linear_iterations,
+                  "FGMRES gives up (and the run stops) after this many "
+                  "iterations.",
+                  Patterns::Integer(1));
+    add_parameter(prm,
+                  "Newton tolerance",
+                  newton_tolerance,
+                  "Navier-Stokes: Newton stops when the residual has "
+                  "fallen by this factor from its first value in the "
+                  "step.",
+                  Patterns::Double(0.));
+    add_parameter(prm,
+                  "Max Newton iterations",
+                  max_newton_iterations,
+                  "Navier-Stokes: the run stops if Newton has not "
+                  "converged after this many iterations.",
+                  Patterns::Integer(1));
     prm.leave_subsection();
   }
 

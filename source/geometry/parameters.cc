@@ -1,4 +1,5 @@
 #include <rbc_ifem/base/input_error.h>
+#include <rbc_ifem/base/parameter_tools.h>
 #include <rbc_ifem/geometry/parameters.h>
 
 #include <deal.II/base/patterns.h>
@@ -9,27 +10,31 @@ namespace rbc_ifem
   GeometryParameters::add_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Geometry");
-    prm.add_parameter("Capillary radius",
-                      capillary_radius,
-                      "Radius of the capillary lumen [µm]. The segment is the "
-                      "cylinder of this radius along the x axis.",
-                      Patterns::Double(0.));
-    prm.add_parameter("Capillary length",
-                      capillary_length,
-                      "Length of the capillary segment, from x = 0 to "
-                      "x = length [µm]. 20 µm holds 7 cells of 7.5 µm, as in "
-                      "the paper.",
-                      Patterns::Double(0.));
-    prm.add_parameter("Wall thickness",
-                      wall_thickness,
-                      "Thickness of the vessel wall (tissue) around the "
-                      "lumen [µm].",
-                      Patterns::Double(0.));
-    prm.add_parameter("Gas layer thickness",
-                      gas_layer_thickness,
-                      "Thickness of the alveolar gas layer outside the wall "
-                      "[µm]; P = P_A holds on its outer surface.",
-                      Patterns::Double(0.));
+    add_parameter(prm,
+                  "Capillary radius",
+                  capillary_radius,
+                  "Radius of the capillary lumen [µm]. The segment is the "
+                  "cylinder of this radius along the x axis.",
+                  Patterns::Double(0.));
+    add_parameter(prm,
+                  "Capillary length",
+                  capillary_length,
+                  "Length of the capillary segment, from x = 0 to "
+                  "x = length [µm]. 20 µm holds 7 cells of 7.5 µm, as in "
+                  "the paper.",
+                  Patterns::Double(0.));
+    add_parameter(prm,
+                  "Wall thickness",
+                  wall_thickness,
+                  "Thickness of the vessel wall (tissue) around the "
+                  "lumen [µm].",
+                  Patterns::Double(0.));
+    add_parameter(prm,
+                  "Gas layer thickness",
+                  gas_layer_thickness,
+                  "Thickness of the alveolar gas layer outside the wall "
+                  "[µm]; P = P_A holds on its outer surface.",
+                  Patterns::Double(0.));
     prm.leave_subsection();
   }
 
@@ -46,35 +51,40 @@ namespace rbc_ifem
   MeshParameters::add_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Mesh");
-    prm.add_parameter("Fluid global refinements",
-                      fluid_global_refinements,
-                      "Global refinements of the coarse lumen mesh (fluid).",
-                      Patterns::Integer(0, 6));
-    prm.add_parameter("Fluid band refinements",
-                      fluid_band_refinements,
-                      "Further refinements of the fluid mesh in a band around "
-                      "the cell membranes (see Band width).",
-                      Patterns::Integer(0, 4));
-    prm.add_parameter("Diffusion global refinements",
-                      diffusion_global_refinements,
-                      "Global refinements of the coarse lumen + wall + gas "
-                      "mesh (CO diffusion).",
-                      Patterns::Integer(0, 6));
-    prm.add_parameter("Diffusion band refinements",
-                      diffusion_band_refinements,
-                      "Further refinements of the diffusion mesh in a band "
-                      "around the cell membranes. The mesh there must be about "
-                      "as fine as the membranes or finer; CO fluxes are "
-                      "smoothest with membrane cells about twice the size of "
-                      "the mesh cells (with 1 global refinement: band "
-                      "refinements = Cells/Surface refinements).",
-                      Patterns::Integer(0, 5));
-    prm.add_parameter("Band width",
-                      band_width,
-                      "Half-width of the band around the membranes that band "
-                      "refinement acts on [µm]: a mesh cell is refined if it "
-                      "comes closer than this to a membrane.",
-                      Patterns::Double(0.));
+    add_parameter(prm,
+                  "Fluid global refinements",
+                  fluid_global_refinements,
+                  "Global refinements of the coarse lumen mesh (fluid).",
+                  Patterns::Integer(0, 6));
+    add_parameter(prm,
+                  "Fluid band refinements",
+                  fluid_band_refinements,
+                  "Further refinements of the fluid mesh in a band around "
+                  "the cell membranes (see Band width).",
+                  Patterns::Integer(0, 4));
+    add_parameter(prm,
+                  "Diffusion global refinements",
+                  diffusion_global_refinements,
+                  "Global refinements of the coarse lumen + wall + gas "
+                  "mesh (CO diffusion).",
+                  Patterns::Integer(0, 6));
+    add_parameter(prm,
+                  "Diffusion band refinements",
+                  diffusion_band_refinements,
+                  "Further refinements of the diffusion mesh in a band "
+                  "around the cell membranes. The mesh there must be about "
+                  "as fine as the membranes or finer; CO fluxes are "
+                  "smoothest with membrane cells about twice the size of "
+                  "the mesh cells (with 1 global refinement: band "
+                  "refinements = Cells/Surface refinements).",
+                  Patterns::Integer(0, 5));
+    add_parameter(prm,
+                  "Band width",
+                  band_width,
+                  "Half-width of the band around the membranes that band "
+                  "refinement acts on [µm]: a mesh cell is refined if it "
+                  "comes closer than this to a membrane.",
+                  Patterns::Double(0.));
     prm.leave_subsection();
   }
 
@@ -98,24 +108,27 @@ namespace rbc_ifem
                   "Reference shape of every cell: biconcave, the Evans-Fung "
                   "red cell; sphere, a spherical capsule of the same "
                   "Diameter (the validation runs, doc/validation.md).");
-    prm.add_parameter("Diameter",
-                      diameter,
-                      "Diameter 2R of the Evans-Fung biconcave reference "
-                      "shape [µm]; its thickness scales with it. Must be "
-                      "smaller than the capillary diameter.",
-                      Patterns::Double(0.));
-    prm.add_parameter("Surface refinements",
-                      surface_refinements,
-                      "Global refinements of each membrane surface mesh; the "
-                      "coarse mesh has 6 quadrilaterals, each refinement "
-                      "multiplies that by 4.",
-                      Patterns::Integer(0, 7));
-    prm.add_parameter("Axis",
-                      axis,
-                      "Direction of every cell's symmetry axis (x, y, z; "
-                      "normalised). The default 1,0,0 is the capillary axis: "
-                      "the cells face the flow, as in the paper.",
-                      Patterns::List(Patterns::Double(), 3, 3, ","));
+    add_parameter(prm,
+                  "Diameter",
+                  diameter,
+                  "Diameter 2R of the Evans-Fung biconcave reference "
+                  "shape [µm]; its thickness scales with it. Must be "
+                  "smaller than the capillary diameter.",
+                  Patterns::Double(0.));
+    add_parameter(prm,
+                  "Surface refinements",
+                  surface_refinements,
+                  "Global refinements of each membrane surface mesh; the "
+                  "coarse mesh has 6 quadrilaterals, each refinement "
+                  "multiplies that by 4.",
+                  Patterns::Integer(0, 7));
+    add_parameter(prm,
+                  "Axis",
+                  axis,
+                  "Direction of every cell's symmetry axis (x, y, z; "
+                  "normalised). The default 1,0,0 is the capillary axis: "
+                  "the cells face the flow, as in the paper.",
+                  Patterns::List(Patterns::Double(), 3, 3, ","));
     // Every direction is kept as a unit vector; validate() rejects zero.
     prm.add_action("Axis", [this](const std::string &) {
       if (axis.norm() > 0.)
@@ -156,27 +169,31 @@ namespace rbc_ifem
                   "positions drawn from Seed, uniformly over all "
                   "non-overlapping arrangements; clustered: cells stacked "
                   "at Minimum gap, the group placed by Cluster position.");
-    prm.add_parameter("Number of cells",
-                      n_cells,
-                      "Number of red cells in the segment. At most "
-                      "floor(length / (cell length + Minimum gap)) fit.",
-                      Patterns::Integer(0));
-    prm.add_parameter("Seed",
-                      seed,
-                      "Seed of the random layout; the same seed gives the "
-                      "same layout on any number of MPI ranks.",
-                      Patterns::Integer(0));
-    prm.add_parameter("Minimum gap",
-                      minimum_gap,
-                      "Smallest distance between the surfaces of two "
-                      "neighbouring cells [µm]; cells keep half of it from the "
-                      "segment's end faces.",
-                      Patterns::Double(0.));
-    prm.add_parameter("Cluster position",
-                      cluster_position,
-                      "Centre of the clustered group as a fraction of the "
-                      "capillary length (0.5: centred).",
-                      Patterns::Double(0., 1.));
+    add_parameter(prm,
+                  "Number of cells",
+                  n_cells,
+                  "Number of red cells in the segment. At most "
+                  "floor(length / (cell length + Minimum gap)) fit.",
+                  Patterns::Integer(0));
+    add_parameter(prm,
+                  "Seed",
+                  seed,
+                  "Seed of the random layout; the same seed gives the "
+                  "same layout on any number of MPI ranks.",
+                  Patterns::Integer(0));
+    add_parameter(prm,
+                  "Minimum gap",
+                  minimum_gap,
+                  "Smallest distance between the surfaces of two "
+                  "neighbouring cells [µm]; cells keep half of it from the "
+                  "segment's end faces.",
+                  Patterns::Double(0.));
+    add_parameter(prm,
+                  "Cluster position",
+                  cluster_position,
+                  "Centre of the clustered group as a fraction of the "
+                  "capillary length (0.5: centred).",
+                  Patterns::Double(0., 1.));
     prm.leave_subsection();
   }
 

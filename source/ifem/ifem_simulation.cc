@@ -28,6 +28,11 @@ namespace rbc_ifem
     /// Everything in a checkpoint: the run's record, the fluid, the membranes.
     struct Checkpoint
     {
+      /// Raised whenever what a checkpoint holds changes: a checkpoint of
+      /// another layout is refused by name, not misread.
+      static constexpr unsigned int current_format = 20261201;
+
+      unsigned int                format  = current_format;
       unsigned int                n_ranks = 0;
       RunRecord                   record;
       FluidState                  fluid;
@@ -37,6 +42,10 @@ namespace rbc_ifem
       void
       serialize(Archive &archive, const unsigned int)
       {
+        archive &format;
+        if (format != current_format)
+          throw std::runtime_error("checkpoint format " +
+                                   std::to_string(format));
         archive &n_ranks &record &fluid &positions;
       }
     };
@@ -74,10 +83,7 @@ namespace rbc_ifem
     record.cells.set_header(
       "time,cell,x,y,z,area,volume,axial_length,max_radius,deformation_index,"
       "frame_x,volume_change,area_change,taylor_deformation,inclination");
-    std::string dm_header = "time,dm_total";
-    for (unsigned int c = 0; c < cells.size(); ++c)
-      dm_header += ",dm_cell_" + std::to_string(c);
-    record.dm.set_header(dm_header);
+    record.dm.set_header(dm_header(cells.size()));
     record.cell_files.resize(cells.size());
   }
 
@@ -251,31 +257,23 @@ namespace rbc_ifem
     for (const auto &surface : surfaces)
       pointers.push_back(surface.get());
     const std::string &directory = parameters.output_directory;
-    const Uptake       uptake    = rbc_ifem::solve_uptake(
-      parameters.geometry,
-      parameters.mesh,
-      parameters.diffusion,
-      pointers,
-      cells.surface_mapping(),
-      parameters.mesh.diffusion_band_refinements,
-      communicator,
-      timer,
-      [&](const CODiffusion &diffusion) {
-        const CODiffusion::OutputFiles files =
-          diffusion.write_output(directory, "diffusion", counter);
-        record.diffusion_files.emplace_back(record.time, files.pressure);
-        record.flux_files.emplace_back(record.time, files.membranes);
-        write_pvd(directory, "diffusion", record.diffusion_files, communicator);
-        write_pvd(directory,
-                  "diffusion_membranes",
-                  record.flux_files,
-                  communicator);
-      });
-    CsvRow row;
-    row << record.time << uptake.dm_total;
-    for (const double dm : uptake.dm_cells)
-      row << dm;
-    record.dm.add_row(row.str());
+    const Uptake       uptake =
+      rbc_ifem::solve_uptake(parameters.geometry,
+                             parameters.mesh,
+                             parameters.diffusion,
+                             pointers,
+                             cells.surface_mapping(),
+                             parameters.mesh.diffusion_band_refinements,
+                             communicator,
+                             timer,
+                             [&](const CODiffusion &diffusion) {
+                               record.uptake_fields.write(diffusion,
+                                                          directory,
+                                                          record.time,
+                                                          counter,
+                                                          communicator);
+                             });
+    record.dm.add_row(dm_row(record.time, uptake));
     return uptake.dm_total;
   }
 
@@ -400,7 +398,10 @@ namespace rbc_ifem
       {
         throw InputError("Immersed cells/Resume",
                          "true",
-                         path + " is not a readable checkpoint.");
+                         path +
+                           " is not a checkpoint this version of rbc-ifem "
+                           "reads (" +
+                           e.what() + ").");
       }
     const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
     if (checkpoint.n_ranks != n_ranks ||

@@ -1,4 +1,5 @@
 #include <rbc_ifem/base/input_error.h>
+#include <rbc_ifem/base/parameter_tools.h>
 #include <rbc_ifem/ifem/parameters.h>
 
 namespace rbc_ifem
@@ -7,20 +8,23 @@ namespace rbc_ifem
   TimeParameters::add_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Time");
-    prm.add_parameter("Time step",
-                      time_step,
-                      "Time step Δt of the implicit (backward Euler) "
-                      "integration [s].",
-                      Patterns::Double(0.));
-    prm.add_parameter("Number of steps",
-                      n_steps,
-                      "How many time steps the run takes.",
-                      Patterns::Integer(1));
-    prm.add_parameter("Output interval",
-                      output_interval,
-                      "Write the fields (VTU) every this many steps; the CSV "
-                      "tables get every step.",
-                      Patterns::Integer(1));
+    add_parameter(prm,
+                  "Time step",
+                  time_step,
+                  "Time step Δt of the implicit (backward Euler) "
+                  "integration [s].",
+                  Patterns::Double(0.));
+    add_parameter(prm,
+                  "Number of steps",
+                  n_steps,
+                  "How many time steps the run takes.",
+                  Patterns::Integer(1));
+    add_parameter(prm,
+                  "Output interval",
+                  output_interval,
+                  "Write the fields (VTU) every this many steps; the CSV "
+                  "tables get every step.",
+                  Patterns::Integer(1));
     prm.leave_subsection();
   }
 
@@ -34,59 +38,67 @@ namespace rbc_ifem
   ImmersedParameters::add_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Immersed cells");
-    prm.add_parameter("Enabled",
-                      enabled,
-                      "Experiment flow: true carries the red cells of "
-                      "subsection Layout in the plasma (the immersed finite "
-                      "element method: membrane forces spread to the fluid, "
-                      "membranes moved with the interpolated velocity); false "
-                      "solves for the plasma alone.");
-    prm.add_parameter("Follow cells",
-                      follow_cells,
-                      "Move the computational frame with the cells: after "
-                      "every step the frame velocity (Fluid/Frame velocity is "
-                      "its start value) becomes the cells' mean velocity along "
-                      "x, so a cell stays in the short segment. false keeps "
-                      "Fluid/Frame velocity.");
-    prm.add_parameter("Diffusion interval",
-                      diffusion_interval,
-                      "Solve the CO diffusion on the current membrane shapes "
-                      "at the start and every this many steps (a row of "
-                      "dm.csv, the P field and the flux map); 0: never.",
-                      Patterns::Integer(0));
-    prm.add_parameter("Checkpoint interval",
-                      checkpoint_interval,
-                      "Write Output directory/checkpoint.bin every this many "
-                      "steps (and at the last step); 0: never.",
-                      Patterns::Integer(0));
-    prm.add_parameter("Resume",
-                      resume,
-                      "Continue from Output directory/checkpoint.bin, written "
-                      "by an earlier run of the same file on the same number "
-                      "of MPI ranks, up to Time/Number of steps.");
-    prm.add_parameter("Progress interval",
-                      progress_interval,
-                      "Print a progress line (step, time, solver iterations, "
-                      "frame velocity, volume change and deformation index of "
-                      "cell 0) every this many steps, and at every diffusion "
-                      "solve (with DM) and output.",
-                      Patterns::Integer(1));
-    prm.add_parameter("Maximum step displacement",
-                      max_step_displacement,
-                      "The run stops, as diverged, if a membrane point moves "
-                      "farther than this fraction of the fluid mesh size in "
-                      "one step (the explicit coupling is then unstable or "
-                      "inaccurate: reduce Time/Time step).",
-                      Patterns::Double(0.));
-    prm.add_parameter("Tether stiffness",
-                      tether_stiffness,
-                      "0: the cells are free. > 0: every membrane point is "
-                      "held at its starting position by a spring of this "
-                      "stiffness [pN/µm], so the cells stay put and flow.csv's "
-                      "held_force_x/y/z is the total force that holds them, "
-                      "the drag's opposite (the held sphere of "
-                      "doc/validation.md). Needs Follow cells = false.",
-                      Patterns::Double(0.));
+    add_parameter(prm,
+                  "Enabled",
+                  enabled,
+                  "Experiment flow: true carries the red cells of "
+                  "subsection Layout in the plasma (the immersed finite "
+                  "element method: membrane forces spread to the fluid, "
+                  "membranes moved with the interpolated velocity); false "
+                  "solves for the plasma alone.");
+    add_parameter(prm,
+                  "Follow cells",
+                  follow_cells,
+                  "Move the computational frame with the cells: after "
+                  "every step the frame velocity (Fluid/Frame velocity is "
+                  "its start value) becomes the cells' mean velocity along "
+                  "x, so a cell stays in the short segment. false keeps "
+                  "Fluid/Frame velocity.");
+    add_parameter(prm,
+                  "Diffusion interval",
+                  diffusion_interval,
+                  "Solve the CO diffusion on the current membrane shapes "
+                  "at the start and every this many steps (a row of "
+                  "dm.csv, the P field and the flux map); 0: never.",
+                  Patterns::Integer(0));
+    add_parameter(prm,
+                  "Checkpoint interval",
+                  checkpoint_interval,
+                  "Write Output directory/checkpoint.bin every this many "
+                  "steps (and at the last step); 0: never.",
+                  Patterns::Integer(0));
+    add_parameter(prm,
+                  "Resume",
+                  resume,
+                  "Continue from Output directory/checkpoint.bin, written "
+                  "by an earlier run of the same file on the same number "
+                  "of MPI ranks, up to Time/Number of steps.");
+    add_parameter(prm,
+                  "Progress interval",
+                  progress_interval,
+                  "Print a progress line (step, time, solver iterations, "
+                  "frame velocity, volume change and deformation index of "
+                  "cell 0) every this many steps, and at every diffusion "
+                  "solve (with DM) and output.",
+                  Patterns::Integer(1));
+    add_parameter(prm,
+                  "Maximum step displacement",
+                  max_step_displacement,
+                  "The run stops, as diverged, if a membrane point moves "
+                  "farther than this fraction of the fluid mesh size in "
+                  "one step (the explicit coupling is then unstable or "
+                  "inaccurate: reduce Time/Time step).",
+                  Patterns::Double(0.));
+    add_parameter(prm,
+                  "Tether stiffness",
+                  tether_stiffness,
+                  "0: the cells are free. > 0: every membrane point is "
+                  "held at its starting position by a spring of this "
+                  "stiffness [pN/µm], so the cells stay put and flow.csv's "
+                  "held_force_x/y/z is the total force that holds them, "
+                  "the drag's opposite (the held sphere of "
+                  "doc/validation.md). Needs Follow cells = false.",
+                  Patterns::Double(0.));
     prm.leave_subsection();
   }
 

@@ -63,14 +63,18 @@ namespace rbc_ifem
   std::string
   written_files(const std::string &directory);
 
+  /// Every parameter of @p prm as a .prm file (with their documentation).
+  std::string
+  parameter_text(const ParameterHandler &prm);
+
   /**
-   * Create @p directory if needed and write @p prm there as parameters.prm,
-   * the parameters as the run uses them (rank 0).
+   * Create @p directory if needed and write @p text (parameter_text()) there
+   * as parameters.prm, the parameters as the run uses them (rank 0).
    */
   void
-  write_parameters(const ParameterHandler &prm,
-                   const std::string      &directory,
-                   const MPI_Comm          communicator);
+  write_parameters(const std::string &text,
+                   const std::string &directory,
+                   const MPI_Comm     communicator);
 
   /**
    * A volume mesh for ParaView: each rank writes the cells it owns, with

@@ -39,10 +39,6 @@ namespace rbc_ifem
   public:
     virtual ~CellForce() = default;
 
-    /// What it is, for messages ("membrane elasticity", "tether").
-    virtual std::string
-    name() const = 0;
-
     /// Add F = -∂E/∂x at @p positions to @p forces [pN]; report E.
     virtual CellForceReport
     add_forces(const std::vector<Vector<double>> &positions,

@@ -56,6 +56,11 @@ namespace rbc_ifem
                    const CellParameters             &cells,
                    const MembraneParameters         &membrane);
 
+    /// Not copied or moved: its cell forces refer to its membranes.
+    CellPopulation(const CellPopulation &) = delete;
+    CellPopulation &
+    operator=(const CellPopulation &) = delete;
+
     unsigned int
     size() const;
     unsigned int
@@ -86,6 +91,10 @@ namespace rbc_ifem
      */
     Tensor<1, 3>
     held_force() const;
+
+    /// The energy of every CellForce at the last compute_forces() [pN µm].
+    double
+    energy() const;
 
     /// Every cell's Membrane, in order: what cell forces act on.
     const std::vector<std::unique_ptr<Membrane>> &
@@ -145,6 +154,7 @@ namespace rbc_ifem
     unsigned int                            n_membrane_points = 0;
     std::vector<std::unique_ptr<CellForce>> cell_forces;
     Tensor<1, 3>                            external_force;
+    double                                  total_energy = 0.;
   };
 } // namespace rbc_ifem
 

@@ -21,9 +21,6 @@ namespace rbc_ifem
     explicit MembraneElasticity(
       const std::vector<std::unique_ptr<Membrane>> &membranes);
 
-    std::string
-    name() const override;
-
     CellForceReport
     add_forces(const std::vector<Vector<double>> &positions,
                std::vector<Vector<double>>       &forces) const override;
@@ -45,9 +42,6 @@ namespace rbc_ifem
   public:
     Tether(const std::vector<std::unique_ptr<Membrane>> &membranes,
            const double                                  stiffness);
-
-    std::string
-    name() const override;
 
     CellForceReport
     add_forces(const std::vector<Vector<double>> &positions,

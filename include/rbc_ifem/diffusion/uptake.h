@@ -11,6 +11,8 @@
 #include <deal.II/grid/tria.h>
 
 #include <functional>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace rbc_ifem
@@ -50,6 +52,44 @@ namespace rbc_ifem
     const MPI_Comm                                  communicator,
     TimerOutput                                    &timer,
     const std::function<void(const CODiffusion &)> &write_fields = {});
+
+  /// The header of dm.csv for @p n_cells cells: time,dm_total,dm_cell_0,...
+  std::string
+  dm_header(const unsigned int n_cells);
+
+  /// The dm.csv row of @p uptake at @p time [s].
+  std::string
+  dm_row(const double time, const Uptake &uptake);
+
+  /**
+   * The fields of a run's uptake solves, for ParaView: the CO partial
+   * pressure of each solve (diffusion.pvd) and the membranes' flux map
+   * (diffusion_membranes.pvd), one record per solve.
+   */
+  class UptakeFields
+  {
+  public:
+    /**
+     * Write the fields of @p diffusion, solved at @p time [s], as the
+     * @p counter-th into @p directory, and rewrite the two .pvd records.
+     */
+    void
+    write(const CODiffusion &diffusion,
+          const std::string &directory,
+          const double       time,
+          const unsigned int counter,
+          const MPI_Comm     communicator);
+
+    template <class Archive>
+    void
+    serialize(Archive &archive, const unsigned int)
+    {
+      archive &pressure &membranes;
+    }
+
+  private:
+    std::vector<std::pair<double, std::string>> pressure, membranes;
+  };
 } // namespace rbc_ifem
 
 #endif

@@ -20,15 +20,14 @@ namespace rbc_ifem
   class CellFlowExperiment : public Experiment
   {
   public:
-    /// Throws InputError if the layout has no cell.
     CellFlowExperiment(const std::string      &name,
                        const Parameters       &parameters,
                        const ParameterHandler &prm,
                        const MPI_Comm          communicator);
 
   private:
-    /// The cells in the capillary, the meshes, the operators (and the
-    /// checkpoint with Resume).
+    /// The cells in the capillary (InputError if there are none), the
+    /// meshes, the operators (and the checkpoint with Resume).
     void
     setup() override;
     /// The time loop.

@@ -34,6 +34,22 @@ namespace rbc_ifem
   };
 
   /**
+   * When a run creates its output directory and writes parameters.prm.
+   * Before the work, for runs that write as they go (a flowing run: its
+   * tables grow while it runs, and parameters.prm says what is running).
+   * After it, for experiments whose files all come from finished work: a run
+   * that fails, or finds its input impossible half-way (a diffusion mesh too
+   * coarse for the membranes of a layout), then leaves nothing behind, and
+   * execute() creates the directory (create_output_directory()) just before
+   * it writes.
+   */
+  enum class ParametersFile
+  {
+    before_work,
+    after_work
+  };
+
+  /**
    * One kind of run of the program, named by the parameter Experiment; the
    * registry (experiments/registry.h) lists them all. An experiment is a
    * type: it implements setup() and execute(), and run() does what every
@@ -42,11 +58,12 @@ namespace rbc_ifem
    *  1. the opening line "rbc-ifem: experiment 'NAME' on N rank(s)";
    *  2. setup(): build and check everything the parameters ask for. An
    *     impossible request throws InputError here, before anything is
-   *     written;
-   *  3. the output directory, and in it parameters.prm: the parameters as
-   *     the run uses them;
+   *     written (the constructors build nothing);
+   *  3. with ParametersFile::before_work, the output directory and in it
+   *     parameters.prm: the parameters as the run uses them;
    *  4. execute(): the experiment's work and its files;
-   *  5. timing.csv (section,calls,wall_seconds) from @ref timer, the list of
+   *  5. with ParametersFile::after_work, parameters.prm;
+   *  6. timing.csv (section,calls,wall_seconds) from @ref timer, the list of
    *     the files written (from what was written: written_files()), and the
    *     peak memory.
    */
@@ -56,16 +73,17 @@ namespace rbc_ifem
     /**
      * The experiment @p name (its registry name) with the model's
      * @p parameters; @p prm holds every parameter of the run as read, for
-     * parameters.prm, and must outlive the experiment.
+     * parameters.prm; @p parameters_file says when that is written.
      */
     Experiment(const std::string      &name,
                const Parameters       &parameters,
                const ParameterHandler &prm,
-               const MPI_Comm          communicator);
+               const MPI_Comm          communicator,
+               const ParametersFile    parameters_file);
 
     virtual ~Experiment() = default;
 
-    /// The whole run, steps 1-5 above.
+    /// The whole run, steps 1-6 above.
     void
     run();
 
@@ -74,21 +92,25 @@ namespace rbc_ifem
     virtual void
     setup();
 
-    /// The experiment's work, once the output directory exists.
+    /// The experiment's work and its files.
     virtual void
     execute() = 0;
 
-    const std::string       name;
-    const Parameters        parameters;
-    const ParameterHandler &prm;
-    const MPI_Comm          communicator;
-    ConditionalOStream      pcout; ///< rank 0's standard output
+    const std::string  name;
+    const Parameters   parameters;
+    const MPI_Comm     communicator;
+    ConditionalOStream pcout; ///< rank 0's standard output
     /**
      * The sections of the run, for timing.csv: rank 0's own clock, since a
      * TimerOutput on the world communicator warns at length when an
      * exception unwinds through it.
      */
     TimerOutput timer;
+    /// Every parameter of the run as read: what parameters.prm holds.
+    const std::string parameter_file_text;
+
+  private:
+    const ParametersFile parameters_file;
   };
 } // namespace rbc_ifem
 

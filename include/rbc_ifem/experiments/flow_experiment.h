@@ -10,11 +10,12 @@ namespace rbc_ifem
 {
   /**
    * Experiment "flow" without cells: the plasma alone in the capillary, for
-   * Time/Number of steps steps of Δt from rest. Writes flow.csv every step
-   * (time,flow_rate,pressure_drop,max_velocity,divergence_l2, then
-   * frame_velocity,newton_iterations,linear_iterations), v and p as
-   * VTU/PVTU with flow.pvd every Time/Output interval steps, and a progress
-   * line per step.
+   * Time/Number of steps steps of Δt from rest. flow.csv gets a row every
+   * step (time,flow_rate,pressure_drop,max_velocity,divergence_l2, then
+   * frame_velocity,newton_iterations,linear_iterations) and is written with
+   * v and p (VTU/PVTU, flow.pvd) every Time/Output interval steps, at the
+   * end, and up to the last good step if the solver fails; a progress line
+   * per step.
    */
   class FlowExperiment : public Experiment
   {

@@ -7,6 +7,8 @@
 
 #include <deal.II/distributed/shared_tria.h>
 
+#include <memory>
+
 namespace rbc_ifem
 {
   /**
@@ -40,8 +42,8 @@ namespace rbc_ifem
     void
     create_meshes();
 
-    const CellLayout    layout;
-    const CellMembranes membranes;
+    std::unique_ptr<const CellLayout>    layout;
+    std::unique_ptr<const CellMembranes> membranes;
 
     parallel::shared::Triangulation<3> fluid_mesh;
     parallel::shared::Triangulation<3> diffusion_mesh;

@@ -26,10 +26,11 @@ namespace rbc_ifem
     /// A new object of its own subsection's parameters, or null.
     std::function<std::unique_ptr<ExperimentParameters>()> make_parameters;
     /**
-     * The experiment, from the model's parameters, its own (null if it has
-     * none) and everything as read, for parameters.prm.
+     * The experiment, from its name, the model's parameters, its own (null
+     * if it has none) and everything as read, for parameters.prm.
      */
-    std::function<std::unique_ptr<Experiment>(const Parameters &,
+    std::function<std::unique_ptr<Experiment>(const std::string &,
+                                              const Parameters &,
                                               const ExperimentParameters *,
                                               const ParameterHandler &,
                                               const MPI_Comm)>
@@ -82,12 +83,12 @@ namespace rbc_ifem
     read(const std::string &filename);
 
     /**
-     * Take every value of @p other (as its parameters.prm shows them), then
-     * @p changes, and check the result: a run derived from another, whose
-     * parameters.prm is exactly what it runs.
+     * Take every value of another run's parameter file @p text
+     * (parameter_text()), then @p changes, and check the result: a run
+     * derived from another, whose parameters.prm is exactly what it runs.
      */
     void
-    derive(const ParameterHandler             &other,
+    derive(const std::string                  &text,
            const std::vector<ParameterChange> &changes);
 
     /// The experiment the parameters name, ready to run().
@@ -116,8 +117,9 @@ namespace rbc_ifem
     validate() const;
 
     ParameterHandler prm;
-    std::string      experiment = "geometry";
-    Parameters       parameters;
+    /// The default is the registry's first.
+    std::string experiment = experiment_types().front().name;
+    Parameters  parameters;
     /// Each experiment's own parameters, in registry order (null: none).
     std::vector<std::unique_ptr<ExperimentParameters>> own;
   };

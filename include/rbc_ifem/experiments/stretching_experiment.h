@@ -39,7 +39,8 @@ namespace rbc_ifem
    * stretch.csv gets force, axial_diameter (x extent), transverse_diameter
    * (y extent), area and volume, and each equilibrium is written as
    * stretch_NNN.vtu (stretch.pvd, with the force as its "time"), all once
-   * the last equilibrium is found.
+   * the last equilibrium is found (ParametersFile::after_work: a failed
+   * equilibrium leaves nothing behind).
    *
    * The membrane problem is small (a few thousand DoFs) and is solved on
    * rank 0; other ranks wait.
@@ -57,9 +58,13 @@ namespace rbc_ifem
     /// The membrane (rank 0).
     void
     setup() override;
-    /// The equilibria and their files (rank 0).
+    /// find_equilibria() on rank 0; every rank throws if it failed.
     void
     execute() override;
+
+    /// The equilibria and their files.
+    void
+    find_equilibria();
 
     /// The unit pulling force: +a_i/A_patch on the x DoFs of the right
     /// patch, -a_i/A_patch on the left one.

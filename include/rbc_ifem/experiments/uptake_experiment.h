@@ -3,38 +3,13 @@
 
 #include <rbc_ifem/diffusion/uptake.h>
 #include <rbc_ifem/experiments/experiment.h>
-#include <rbc_ifem/geometry/cell_layout.h>
-#include <rbc_ifem/geometry/cell_membranes.h>
+#include <rbc_ifem/geometry/placed_cells.h>
 
 #include <functional>
 #include <string>
 
 namespace rbc_ifem
 {
-  /**
-   * The cells of one layout in the capillary: the CellLayout (InputError if
-   * it is impossible) and the membranes on it, their meshes checked for
-   * clearance (InputError if they cross each other or the wall).
-   */
-  struct PlacedCells
-  {
-    /// The layout of subsection Layout.
-    PlacedCells(const Parameters  &parameters,
-                const unsigned int surface_refinements);
-
-    /// The cells of @p layout.
-    PlacedCells(const Parameters  &parameters,
-                const CellLayout  &layout,
-                const unsigned int surface_refinements);
-
-    /// The tube hematocrit of the membranes.
-    double
-    hematocrit() const;
-
-    const CellLayout    layout;
-    const CellMembranes membranes;
-  };
-
   /**
    * What the CO uptake experiments (diffusion, layouts, mesh convergence)
    * share: each is a steady diffusion solve (CODiffusion, through
@@ -43,9 +18,14 @@ namespace rbc_ifem
    */
   class UptakeExperiment : public Experiment
   {
-  protected:
-    using Experiment::Experiment;
+  public:
+    /// Its files all come from finished solves: ParametersFile::after_work.
+    UptakeExperiment(const std::string      &name,
+                     const Parameters       &parameters,
+                     const ParameterHandler &prm,
+                     const MPI_Comm          communicator);
 
+  protected:
     /**
      * The uptake of @p cells on the diffusion mesh refined
      * @p band_refinements times around them; @p write_fields as for

@@ -1,7 +1,7 @@
 #ifndef rbc_ifem_fluid_parameters_h
 #define rbc_ifem_fluid_parameters_h
 
-#include <rbc_ifem/base/selection.h>
+#include <rbc_ifem/base/parameter_tools.h>
 
 #include <deal.II/base/parameter_handler.h>
 

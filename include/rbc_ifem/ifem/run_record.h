@@ -2,6 +2,7 @@
 #define rbc_ifem_ifem_run_record_h
 
 #include <rbc_ifem/base/csv.h>
+#include <rbc_ifem/diffusion/uptake.h>
 
 #include <string>
 #include <utility>
@@ -23,15 +24,15 @@ namespace rbc_ifem
     CsvTable flow, cells, dm;   ///< flow.csv, cells.csv, dm.csv
     std::vector<std::pair<double, std::string>> fluid_files;
     std::vector<std::vector<std::pair<double, std::string>>>
-                                                cell_files; ///< per cell
-    std::vector<std::pair<double, std::string>> diffusion_files, flux_files;
+                 cell_files;    ///< per cell
+    UptakeFields uptake_fields; ///< diffusion.pvd, diffusion_membranes.pvd
 
     template <class Archive>
     void
     serialize(Archive &archive, const unsigned int)
     {
       archive &step &time &frame_offset &flow &cells &dm &fluid_files
-        &cell_files &diffusion_files &flux_files;
+        &cell_files &uptake_fields;
     }
   };
 } // namespace rbc_ifem

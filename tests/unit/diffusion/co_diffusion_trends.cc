@@ -9,7 +9,8 @@
 //   one cell does not depend on it.
 
 #include <rbc_ifem/diffusion/uptake.h>
-#include <rbc_ifem/experiments/uptake_experiment.h>
+#include <rbc_ifem/geometry/placed_cells.h>
+#include <rbc_ifem/parameters.h>
 
 #include "check.h"
 
@@ -42,7 +43,10 @@ namespace
                       std::cout,
                       TimerOutput::never,
                       TimerOutput::wall_times);
-    const PlacedCells cells(layout_run, p.cells.surface_refinements);
+    const PlacedCells cells(layout_run.layout,
+                            p.geometry,
+                            p.cells,
+                            p.cells.surface_refinements);
     const Uptake      uptake = solve_uptake(p.geometry,
                                        p.mesh,
                                        p.diffusion,

@@ -1,8 +1,9 @@
-#ifndef rbc_ifem_base_selection_h
-#define rbc_ifem_base_selection_h
+#ifndef rbc_ifem_base_parameter_tools_h
+#define rbc_ifem_base_parameter_tools_h
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/patterns.h>
 #include <deal.II/base/utilities.h>
 
 #include <string>
@@ -12,6 +13,39 @@
 namespace rbc_ifem
 {
   using namespace dealii;
+
+  /**
+   * ParameterHandler::add_parameter() (declare @p entry with the value of
+   * @p value as its default, and bind @p value to it), checked: deal.II writes
+   * the default as text with six significant digits and at once reads that
+   * text back into @p value, so a default with more digits would change
+   * silently. This refuses such a default with an error at start-up.
+   */
+  template <typename T>
+  void
+  add_parameter(ParameterHandler            &prm,
+                const std::string           &entry,
+                T                           &value,
+                const std::string           &documentation,
+                const Patterns::PatternBase &pattern =
+                  *Patterns::Tools::Convert<T>::to_pattern())
+  {
+    const T default_value = value;
+    prm.add_parameter(entry, value, documentation, pattern);
+    AssertThrow(value == default_value,
+                ExcMessage("the default of '" + entry +
+                           "' has more than six significant digits"));
+  }
+
+  /// "a|b|c" from @p names.
+  inline std::string
+  join_names(const std::vector<std::string> &names)
+  {
+    std::string text;
+    for (const std::string &name : names)
+      text += (text.empty() ? "" : "|") + name;
+    return text;
+  }
 
   /**
    * The names of the values of an enum, as a .prm file spells them: the one
@@ -26,10 +60,10 @@ namespace rbc_ifem
   std::string
   selection_text(const SelectionNames<Enum> &names)
   {
-    std::string text;
+    std::vector<std::string> text;
     for (const auto &[value, name] : names)
-      text += (text.empty() ? "" : "|") + name;
-    return text;
+      text.push_back(name);
+    return join_names(text);
   }
 
   template <typename Enum>

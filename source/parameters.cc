@@ -22,6 +22,7 @@ namespace rbc_ifem
     time.add_parameters(prm);
     membrane.add_parameters(prm);
     immersed.add_parameters(prm);
+    interactions.add_parameters(prm);
     diffusion.add_parameters(prm);
   }
 
@@ -42,6 +43,9 @@ namespace rbc_ifem
     time.validate();
     membrane.validate();
     immersed.validate();
+    interactions.validate(cells.diameter,
+                          geometry.capillary_radius,
+                          geometry.capillary_length);
     diffusion.validate();
   }
 } // namespace rbc_ifem

@@ -1,6 +1,7 @@
 #ifndef rbc_ifem_parameters_h
 #define rbc_ifem_parameters_h
 
+#include <rbc_ifem/coupling/parameters.h>
 #include <rbc_ifem/diffusion/parameters.h>
 #include <rbc_ifem/fluid/parameters.h>
 #include <rbc_ifem/geometry/parameters.h>
@@ -25,16 +26,17 @@ namespace rbc_ifem
    */
   struct Parameters
   {
-    std::string         output_directory = "output/run";
-    GeometryParameters  geometry;
-    MeshParameters      mesh;
-    CellParameters      cells;
-    LayoutParameters    layout;
-    FluidParameters     fluid;
-    TimeParameters      time;
-    MembraneParameters  membrane;
-    ImmersedParameters  immersed;
-    DiffusionParameters diffusion;
+    std::string           output_directory = "output/run";
+    GeometryParameters    geometry;
+    MeshParameters        mesh;
+    CellParameters        cells;
+    LayoutParameters      layout;
+    FluidParameters       fluid;
+    TimeParameters        time;
+    MembraneParameters    membrane;
+    ImmersedParameters    immersed;
+    InteractionParameters interactions;
+    DiffusionParameters   diffusion;
 
     /**
      * Declare Output directory and every subsection in @p prm, with the

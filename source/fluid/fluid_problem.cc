@@ -81,6 +81,20 @@ namespace rbc_ifem
   }
 
   FlowDrive
+  FlowDrive::periodic_capillary(const FluidParameters    &fluid,
+                                const GeometryParameters &geometry)
+  {
+    FlowDrive drive;
+    drive.dirichlet[FluidBoundary::wall] =
+      std::make_shared<Functions::ZeroFunction<3>>(4);
+    drive.period        = geometry.capillary_length;
+    const double radius = geometry.capillary_radius;
+    drive.pressure_gradient =
+      8. * fluid.viscosity * fluid.inlet_mean_speed / (radius * radius);
+    return drive;
+  }
+
+  FlowDrive
   FlowDrive::shear(const double shear_rate)
   {
     FlowDrive drive;
@@ -144,6 +158,7 @@ namespace rbc_ifem
     TimerOutput::Scope scope(timer, "fluid: setup");
     setup_dofs();
     setup_matrices();
+    assemble_drive_load();
     if (parameters.model == FluidModel::stokes)
       {
         // The Stokes operator does not change: assemble it and its
@@ -170,6 +185,12 @@ namespace rbc_ifem
     relevant = {relevant_dofs.get_view(0, n_v),
                 relevant_dofs.get_view(n_v, n_v + n_p)};
 
+    if (drive.period)
+      GridTools::collect_periodic_faces(dof_handler,
+                                        FluidBoundary::inlet,
+                                        FluidBoundary::outlet,
+                                        /*direction=*/0,
+                                        periodic_faces);
     make_constraints(homogeneous_constraints, 0.);
     constrained_frame_velocity = std::numeric_limits<double>::quiet_NaN();
   }
@@ -192,6 +213,9 @@ namespace rbc_ifem
                                                              scale),
                                                constraints,
                                                velocity_mask);
+    // After the wall's values, which the periodicity then leaves alone on
+    // the edges where the wall meets the ends.
+    DoFTools::make_periodicity_constraints<3, 3>(periodic_faces, constraints);
     constraints.close();
   }
 
@@ -230,6 +254,7 @@ namespace rbc_ifem
     residual.reinit(owned, communicator);
     update.reinit(owned, communicator);
     body_force.reinit(owned, communicator);
+    drive_load.reinit(owned, communicator);
     unit_axial_velocity.reinit(owned, communicator);
     VectorTools::interpolate(mapping,
                              dof_handler,
@@ -391,7 +416,40 @@ namespace rbc_ifem
         }
     residual.compress(VectorOperation::add);
     residual -= body_force;
+    residual -= drive_load;
     return residual.l2_norm();
+  }
+
+  void
+  FluidProblem::assemble_drive_load()
+  {
+    if (drive.pressure_gradient == 0.)
+      return;
+    const QGauss<3>                      quadrature(fe.degree + 1);
+    FEValues<3>                          fe_values(mapping,
+                          fe,
+                          quadrature,
+                          update_values | update_JxW_values);
+    const unsigned int                   n = fe.n_dofs_per_cell();
+    Vector<double>                       cell_load(n);
+    std::vector<types::global_dof_index> dof_indices(n);
+    const FEValuesExtractors::Scalar     axial_velocity(0);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          cell_load = 0.;
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            for (unsigned int i = 0; i < n; ++i)
+              cell_load(i) += drive.pressure_gradient *
+                              fe_values[axial_velocity].value(i, q) *
+                              fe_values.JxW(q);
+          cell->get_dof_indices(dof_indices);
+          homogeneous_constraints.distribute_local_to_global(cell_load,
+                                                             dof_indices,
+                                                             drive_load);
+        }
+    drive_load.compress(VectorOperation::add);
   }
 
   std::pair<unsigned int, double>
@@ -648,6 +706,8 @@ namespace rbc_ifem
                         Utilities::MPI::sum(inlet_area, communicator) -
                       Utilities::MPI::sum(outlet_pressure, communicator) /
                         Utilities::MPI::sum(outlet_area, communicator);
+    if (drive.period)
+      m.pressure_drop += drive.pressure_gradient * *drive.period;
     return m;
   }
 

@@ -172,6 +172,34 @@ namespace rbc_ifem
     triangulation.refine_global(n_global_refinements);
   }
 
+  Point<3>
+  wrap_into_segment(const Point<3> &p, const std::optional<double> &period)
+  {
+    if (!period)
+      return p;
+    Point<3> wrapped = p;
+    wrapped[0] -= *period * std::floor(p[0] / *period);
+    // floor() of a tiny negative quotient can land exactly on the period.
+    if (wrapped[0] >= *period)
+      wrapped[0] -= *period;
+    return wrapped;
+  }
+
+  std::vector<Point<3>>
+  points_in_segment(const std::vector<Point<3>> &points,
+                    const std::optional<double> &period)
+  {
+    if (!period)
+      return points;
+    std::vector<Point<3>> result;
+    result.reserve(3 * points.size());
+    for (const Point<3> &p : points)
+      for (const double shift : {0., -*period, *period})
+        result.push_back(wrap_into_segment(p, period) +
+                         Tensor<1, 3>({shift, 0., 0.}));
+    return result;
+  }
+
   void
   refine_near_points(Triangulation<3>            &triangulation,
                      const std::vector<Point<3>> &points,

@@ -35,7 +35,25 @@ namespace rbc_ifem
                   "Thickness of the alveolar gas layer outside the wall "
                   "[µm]; P = P_A holds on its outer surface.",
                   Patterns::Double(0.));
+    add_parameter(prm,
+                  "Periodic",
+                  periodic,
+                  "true: the segment repeats along x, a train of cells in an "
+                  "endless capillary. The plasma is periodic (driven by the "
+                  "constant pressure gradient 8μū/R² that carries the mean "
+                  "speed ū = Fluid/Inlet mean speed through the empty "
+                  "capillary; no inflow profile), so is the CO partial "
+                  "pressure, a cell leaving at x = L re-enters at x = 0, and "
+                  "cells interact across the ends. false: an inlet with "
+                  "Poiseuille inflow at x = 0, a traction-free outlet at "
+                  "x = L, no CO flux through the end faces.");
     prm.leave_subsection();
+  }
+
+  std::optional<double>
+  GeometryParameters::period() const
+  {
+    return periodic ? std::optional<double>(capillary_length) : std::nullopt;
   }
 
   void

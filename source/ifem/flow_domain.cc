@@ -48,6 +48,7 @@ namespace rbc_ifem
                            Triangulation<3> &triangulation) {
       create_fluid_mesh(triangulation, geometry, refinements);
     };
+    domain.wall_radius     = parameters.geometry.capillary_radius;
     domain.velocity_scale  = std::abs(parameters.fluid.inlet_mean_speed);
     domain.velocity_symbol = "ū";
     domain.length_scale    = 2. * parameters.geometry.capillary_radius;

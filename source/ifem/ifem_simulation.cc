@@ -1,6 +1,7 @@
 #include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/output.h>
 #include <rbc_ifem/base/solver_failure.h>
+#include <rbc_ifem/coupling/contact_forces.h>
 #include <rbc_ifem/coupling/membrane_forces.h>
 #include <rbc_ifem/coupling/time_step_limit.h>
 #include <rbc_ifem/diffusion/co_diffusion.h>
@@ -30,7 +31,7 @@ namespace rbc_ifem
     {
       /// Raised whenever what a checkpoint holds changes: a checkpoint of
       /// another layout is refused by name, not misread.
-      static constexpr unsigned int current_format = 20261201;
+      static constexpr unsigned int current_format = 20261202;
 
       unsigned int                format  = current_format;
       unsigned int                n_ranks = 0;
@@ -71,10 +72,24 @@ namespace rbc_ifem
             timer)
     , cells(domain.placements, parameters.cells, parameters.membrane)
   {
-    if (parameters.immersed.tether_stiffness > 0.)
+    const ImmersedParameters &immersed = parameters.immersed;
+    if (immersed.tether_stiffness > 0.)
       cells.add_force(
-        std::make_unique<Tether>(cells.membranes(),
-                                 parameters.immersed.tether_stiffness));
+        std::make_unique<Tether>(cells.membranes(), immersed.tether_stiffness));
+    const std::vector<Tensor<1, 3>> pushes = immersed.pushing_force_vectors();
+    if (!pushes.empty())
+      {
+        if (pushes.size() != cells.size())
+          throw InputError("Immersed cells/Pushing forces",
+                           immersed.pushing_forces,
+                           "one force 'Fx, Fy, Fz' per cell: " +
+                             std::to_string(cells.size()) +
+                             " separated by ';', or none.");
+        cells.add_force(
+          std::make_unique<PushingForce>(cells.membranes(), pushes));
+      }
+    add_interaction_forces(cells, parameters.interactions, domain.wall_radius);
+    contacts = cells.size() > 1 || domain.wall_radius.has_value();
 
     record.flow.set_header(
       "time,flow_rate,pressure_drop,max_velocity,divergence_l2,"
@@ -82,7 +97,8 @@ namespace rbc_ifem
       "held_force_y,held_force_z");
     record.cells.set_header(
       "time,cell,x,y,z,area,volume,axial_length,max_radius,deformation_index,"
-      "frame_x,volume_change,area_change,taylor_deformation,inclination");
+      "frame_x,volume_change,area_change,taylor_deformation,inclination,"
+      "min_gap,wall_gap");
     record.dm.set_header(dm_header(cells.size()));
     record.cell_files.resize(cells.size());
   }
@@ -160,6 +176,15 @@ namespace rbc_ifem
       pcout << "  WARNING: Time/Time step = " << parameters.time.time_step
             << " s exceeds the explicit-coupling estimate " << stable_step
             << " s; the run may become unstable." << std::endl;
+    const InteractionParameters &contact = parameters.interactions;
+    if (cells.size() > 1 && contact.repulsion_pressure > 0. &&
+        contact.repulsion_range < spacing)
+      pcout << "  WARNING: Cell interactions/Repulsion range = "
+            << contact.repulsion_range
+            << " µm is shorter than the membrane point spacing " << spacing
+            << " µm: a point of one cell may slip between the points of "
+               "another. Raise the range or Cells/Surface refinements."
+            << std::endl;
     if (spacing > 0.5 * mesh_size)
       pcout
         << "  WARNING: the membrane point spacing " << spacing
@@ -227,9 +252,11 @@ namespace rbc_ifem
         stop(why.str(), last_good);
       }
 
+    cells.move(velocities, dt);
+    if (contacts)
+      check_gaps(last_good);
     {
       TimerOutput::Scope scope(timer, "coupling: move and place");
-      cells.move(velocities, dt);
       try
         {
           coupling->place(cells.points());
@@ -299,6 +326,12 @@ namespace rbc_ifem
   IFEMSimulation::record_shapes()
   {
     const std::vector<CellShape> shapes = cells.shapes();
+    const std::vector<CellGaps>  gaps =
+      measure_gaps(cells.membranes(), cells.positions(), domain.wall_radius);
+    // A gap to nothing (one cell, no wall) is left empty.
+    const auto gap_text = [](const double gap) {
+      return std::isfinite(gap) ? csv_row(gap) : std::string();
+    };
     for (unsigned int c = 0; c < shapes.size(); ++c)
       {
         const CellShape &s = shapes[c];
@@ -316,11 +349,40 @@ namespace rbc_ifem
                          s.volume / cells.reference_volume(c) - 1.,
                          s.area / cells.reference_area(c) - 1.,
                          s.taylor_deformation,
-                         s.inclination);
+                         s.inclination,
+                         gap_text(gaps[c].to_cells),
+                         gap_text(gaps[c].to_wall));
       }
     for (RunObserver *observer : observers)
       observer->record(record.time, shapes);
     return shapes;
+  }
+
+  std::vector<CellGaps>
+  IFEMSimulation::check_gaps(const std::vector<Vector<double>> &last_good)
+  {
+    std::vector<CellGaps> gaps;
+    {
+      TimerOutput::Scope scope(timer, "contact check");
+      gaps =
+        measure_gaps(cells.membranes(), cells.positions(), domain.wall_radius);
+    }
+    for (unsigned int c = 0; c < gaps.size(); ++c)
+      {
+        std::ostringstream why;
+        if (gaps[c].to_cells < 0.)
+          why << "the membrane of cell " << c << " crossed another cell's (gap "
+              << gaps[c].to_cells
+              << " µm): raise Cell interactions/Repulsion pressure or "
+                 "reduce Time/Time step";
+        else if (gaps[c].to_wall <= 0.)
+          why << "cell " << c << " reached the capillary wall (wall gap "
+              << gaps[c].to_wall
+              << " µm): set Cell interactions/Wall pressure > 0, or raise it";
+        if (!why.str().empty())
+          stop(why.str(), last_good);
+      }
+    return gaps;
   }
 
   void
@@ -489,6 +551,16 @@ namespace rbc_ifem
                    << " µm³/(s Torr)";
         const std::vector<CellShape> shapes =
           output ? record_shapes() : cells.shapes();
+        if (cells.size() > 1)
+          {
+            double smallest_gap = std::numeric_limits<double>::infinity();
+            for (const CellGaps &gaps : measure_gaps(cells.membranes(),
+                                                     cells.positions(),
+                                                     domain.wall_radius))
+              smallest_gap = std::min(smallest_gap, gaps.to_cells);
+            progress << ", smallest gap between cells " << smallest_gap
+                     << " µm";
+          }
         progress << "; cell 0: volume change "
                  << shapes[0].volume / cells.reference_volume(0) - 1.
                  << ", deformation index " << shapes[0].deformation_index;

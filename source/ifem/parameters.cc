@@ -2,6 +2,8 @@
 #include <rbc_ifem/base/parameter_tools.h>
 #include <rbc_ifem/ifem/parameters.h>
 
+#include <deal.II/base/utilities.h>
+
 namespace rbc_ifem
 {
   void
@@ -99,7 +101,36 @@ namespace rbc_ifem
                   "the drag's opposite (the held sphere of "
                   "doc/validation.md). Needs Follow cells = false.",
                   Patterns::Double(0.));
+    add_parameter(prm,
+                  "Pushing forces",
+                  pushing_forces,
+                  "A constant force on each cell [pN], 'Fx, Fy, Fz' per "
+                  "cell separated by ';', in the order of subsection "
+                  "Layout (empty: none), spread over the membrane by area: "
+                  "to drive one cell into another or against the wall "
+                  "(prm/cells_in_contact.prm). Its total is part of "
+                  "flow.csv's held_force.",
+                  Patterns::List(Patterns::List(Patterns::Double(), 3, 3, ","),
+                                 0,
+                                 Patterns::List::max_int_value,
+                                 ";"));
     prm.leave_subsection();
+  }
+
+  std::vector<Tensor<1, 3>>
+  ImmersedParameters::pushing_force_vectors() const
+  {
+    std::vector<Tensor<1, 3>> forces;
+    for (const std::string &force :
+         Utilities::split_string_list(pushing_forces, ';'))
+      {
+        const std::vector<double> components =
+          Utilities::string_to_double(Utilities::split_string_list(force, ','));
+        forces.emplace_back();
+        for (unsigned int d = 0; d < 3; ++d)
+          forces.back()[d] = components[d];
+      }
+    return forces;
   }
 
   void

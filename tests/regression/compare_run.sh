@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # Usage: compare_run.sh [-r TOLERANCE] [-n RANKS -m MPIEXEC] [-b FILE:COLUMN:LOW:HIGH]...
+#                       [-a FILE:COLUMN:LOW:HIGH]...
 #                       RBC_IFEM PRM EXPECTED_DIR NUMDIFF
 #
 # Runs an experiment (on RANKS MPI ranks with -n) in an empty directory and
@@ -11,18 +12,22 @@
 # out columns that legitimately differ (iteration counts across rank counts).
 # Each -b checks that COLUMN of the last row of the run's CSV FILE (in the
 # output directory) lies in [LOW, HIGH]: a band around a published value.
+# Each -a checks that every row's COLUMN lies in [LOW, HIGH] (a gap that
+# stays positive over the run), and prints the smallest and largest value.
 set -u
 source "$(dirname "$0")/../script_setup.sh"
 tolerance=1e-8
 ranks=
 mpiexec=
 bands=()
-while getopts "r:n:m:b:" option; do
+all_rows=()
+while getopts "r:n:m:b:a:" option; do
   case $option in
     r) tolerance=$OPTARG ;;
     n) ranks=$OPTARG ;;
     m) mpiexec=$OPTARG ;;
     b) bands+=("$OPTARG") ;;
+    a) all_rows+=("$OPTARG") ;;
     *) exit 2 ;;
   esac
 done
@@ -78,6 +83,20 @@ for band in "${bands[@]}"; do
     echo "ok: $file $name = $value lies in [$low, $high]"
   else
     echo "FAILED: $file $name = $value, outside [$low, $high]"
+    failed=1
+  fi
+done
+for band in "${all_rows[@]}"; do
+  IFS=: read -r file name low high <<<"$band"
+  range=$(awk -F, -v name="$name" 'FNR == 1 { for (i = 1; i <= NF; ++i) if ($i == name) c = i; next }
+                                    $c != "" { if (n++ == 0 || $c < lo) lo = $c; if (n == 1 || $c > hi) hi = $c }
+                                    END { if (n) print lo, hi }' "$directory/$file")
+  read -r smallest largest <<<"$range"
+  if awk -v lo="$smallest" -v hi="$largest" -v a="$low" -v b="$high" \
+       'BEGIN { exit !(lo != "" && lo >= a && hi <= b) }'; then
+    echo "ok: $file $name over the run lies in [$smallest, $largest], within [$low, $high]"
+  else
+    echo "FAILED: $file $name over the run lies in [$smallest, $largest], not within [$low, $high]"
     failed=1
   fi
 done

@@ -10,6 +10,7 @@
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping_q.h>
+#include <deal.II/grid/grid_tools.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_block_sparse_matrix.h>
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
@@ -18,6 +19,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -70,11 +72,27 @@ namespace rbc_ifem
   struct FlowDrive
   {
     std::map<types::boundary_id, std::shared_ptr<const Function<3>>> dirichlet;
+    /**
+     * With a period L: the inlet and outlet faces are one, the flow (v and
+     * p) periodic along x with this length, and there is no open boundary.
+     */
+    std::optional<double> period;
+    /// A constant force density G e_x [pN/µm³]: the mean pressure gradient
+    /// -dp/dx that drives a periodic segment.
+    double pressure_gradient = 0.;
 
     /// The capillary: no slip on the wall, Poiseuille of mean speed ū at the
     /// inlet.
     static FlowDrive
     capillary(const FluidParameters &fluid, const GeometryParameters &geometry);
+    /**
+     * The periodic capillary (Geometry/Periodic): no slip on the wall, and
+     * the pressure gradient G = 8μū/R² that carries the Poiseuille flow of
+     * mean speed ū through the empty segment.
+     */
+    static FlowDrive
+    periodic_capillary(const FluidParameters    &fluid,
+                       const GeometryParameters &geometry);
     /// The shear box: simple shear of rate γ̇ [1/s] on the walls y, z = const.
     static FlowDrive
     shear(const double shear_rate);
@@ -84,8 +102,9 @@ namespace rbc_ifem
   struct FlowMeasures
   {
     double flow_rate = 0.; ///< ∫ v·n over the outlet [µm³/s]
-    double pressure_drop =
-      0.; ///< mean inlet minus mean outlet pressure [pN/µm²]
+    /// Mean inlet minus mean outlet pressure [pN/µm²]; in a periodic
+    /// segment the drop G L that the pressure gradient imposes.
+    double pressure_drop = 0.;
     double max_velocity  = 0.; ///< largest |v| at quadrature points [µm/s]
     double divergence_l2 = 0.; ///< ‖∇·v‖ in L2 [µm^1.5/s]
   };
@@ -146,7 +165,9 @@ namespace rbc_ifem
    * Boundary conditions (FlowDrive): in the capillary no slip on the wall,
    * the Poiseuille profile of mean speed ū at the inlet, both shifted by
    * -U_frame e_x in a frame moving with U_frame; in the shear box simple
-   * shear on the walls. On the open boundaries (the capillary's outlet, the
+   * shear on the walls; in a periodic capillary no slip on the wall, v and
+   * p periodic along x, and the drive's pressure gradient as a body force.
+   * On the open boundaries (the capillary's outlet, the
    * box's ends) the do-nothing condition μ ∂v/∂n - p n = 0
    * (the gradient form of the viscous term; with constant μ and ∇·v = 0 it
    * equals ∇·(2με(v)) inside the domain, and it admits the fully developed
@@ -243,6 +264,9 @@ namespace rbc_ifem
     build_preconditioner();
     double
     assemble_residual(const bool with_convection);
+    /// The load of FlowDrive::pressure_gradient, ∫ G e_x · φ_J, once.
+    void
+    assemble_drive_load();
     /// Solve J δ = -R and update; returns FGMRES's iterations and final
     /// residual.
     std::pair<unsigned int, double>
@@ -281,6 +305,10 @@ namespace rbc_ifem
     TrilinosWrappers::MPI::BlockVector residual;   ///< owned
     TrilinosWrappers::MPI::BlockVector update;     ///< owned
     TrilinosWrappers::MPI::BlockVector body_force; ///< owned load vector
+    TrilinosWrappers::MPI::BlockVector drive_load; ///< owned, of the drive
+    /// The matched inlet and outlet faces of a periodic segment.
+    std::vector<GridTools::PeriodicFacePair<DoFHandler<3>::cell_iterator>>
+      periodic_faces;
     TrilinosWrappers::MPI::BlockVector
       unit_axial_velocity; ///< owned, v = e_x, p = 0
   };

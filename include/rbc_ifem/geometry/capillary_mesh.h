@@ -7,6 +7,7 @@
 #include <deal.II/base/types.h>
 #include <deal.II/grid/tria.h>
 
+#include <optional>
 #include <vector>
 
 /**
@@ -60,6 +61,24 @@ namespace rbc_ifem
   create_diffusion_mesh(Triangulation<3>         &triangulation,
                         const GeometryParameters &geometry,
                         const unsigned int        n_global_refinements);
+
+  /**
+   * @p p moved along x by a multiple of @p period into [0, period): where a
+   * point of a cell that crossed the end of a periodic segment lies in the
+   * segment's meshes. Without a period, @p p itself.
+   */
+  Point<3>
+  wrap_into_segment(const Point<3> &p, const std::optional<double> &period);
+
+  /**
+   * What a band around @p points must see in the segment: each point
+   * wrapped into it and, with a period, its two images one period before
+   * and after, so that a band refined around a cell at one end reaches
+   * across to the other (refine_near_points()).
+   */
+  std::vector<Point<3>>
+  points_in_segment(const std::vector<Point<3>> &points,
+                    const std::optional<double> &period);
 
   /**
    * Refine, @p n_steps times, every active cell that comes closer than

@@ -6,6 +6,8 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/tensor.h>
 
+#include <optional>
+
 namespace rbc_ifem
 {
   using namespace dealii;
@@ -25,6 +27,12 @@ namespace rbc_ifem
     double capillary_length    = 20.0; ///< segment length along x [µm]
     double wall_thickness      = 1.0;  ///< vessel wall [µm]
     double gas_layer_thickness = 5.0;  ///< alveolar gas layer [µm]
+    /// The segment repeats along x: what leaves at x = L enters at x = 0.
+    bool periodic = false;
+
+    /// The period along x, Capillary length, if Periodic; none otherwise.
+    std::optional<double>
+    period() const;
 
     void
     add_parameters(ParameterHandler &prm);

@@ -8,6 +8,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,10 @@ namespace rbc_ifem
     std::vector<CellPlacement> placements;
     /// Create the fluid mesh, before the band refinement around the cells.
     std::function<void(Triangulation<3> &)> create_mesh;
+    /// The radius of the cylindrical wall about the x axis that the cells
+    /// must stay inside (the capillary's); none for the shear box, whose
+    /// walls the cells never reach.
+    std::optional<double> wall_radius;
 
     /// A velocity and a length scale for the Reynolds and capillary
     /// numbers, with their symbols for the log.

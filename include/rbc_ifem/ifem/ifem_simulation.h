@@ -2,6 +2,7 @@
 #define rbc_ifem_ifem_ifem_simulation_h
 
 #include <rbc_ifem/coupling/cell_population.h>
+#include <rbc_ifem/coupling/contact_gaps.h>
 #include <rbc_ifem/coupling/immersed_coupling.h>
 #include <rbc_ifem/fluid/fluid_problem.h>
 #include <rbc_ifem/ifem/flow_domain.h>
@@ -47,7 +48,8 @@ namespace rbc_ifem
    *
    * A run that diverges (non-finite forces or fields, a point moving more
    * than Maximum step displacement of the mesh size in one step, a cell
-   * leaving the fluid domain) stops with SolverFailure, after writing its
+   * leaving the fluid domain, the membranes of two cells crossing, a cell
+   * reaching the capillary wall) stops with SolverFailure, after writing its
    * tables and the last good membranes.
    */
   class IFEMSimulation
@@ -91,6 +93,10 @@ namespace rbc_ifem
     /// shapes.
     std::vector<CellShape>
     record_shapes();
+    /// The gaps of every cell now; stops the run if membranes cross or a
+    /// cell reaches the wall.
+    std::vector<CellGaps>
+    check_gaps(const std::vector<Vector<double>> &last_good);
     void
     write_fields();
     void
@@ -114,6 +120,8 @@ namespace rbc_ifem
     std::unique_ptr<ImmersedCoupling>  coupling;
     std::vector<RunObserver *>         observers;
     RunRecord                          record;
+    /// Whether anything can touch: several cells, or a wall.
+    bool   contacts  = false;
     double mesh_size = 0.;                   ///< fluid h at the membranes [µm]
     TrilinosWrappers::MPI::BlockVector load; ///< the spread forces, owned
   };

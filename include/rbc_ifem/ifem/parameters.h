@@ -2,6 +2,10 @@
 #define rbc_ifem_ifem_parameters_h
 
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/tensor.h>
+
+#include <string>
+#include <vector>
 
 namespace rbc_ifem
 {
@@ -40,6 +44,12 @@ namespace rbc_ifem
     unsigned int progress_interval =
       10;                         ///< a progress line every this many steps
     double tether_stiffness = 0.; ///< springs to the start [pN/µm]; 0: free
+    /// A constant force on each cell, "Fx, Fy, Fz; ..." [pN]; empty: none.
+    std::string pushing_forces;
+
+    /// The Pushing forces, one per cell listed.
+    std::vector<Tensor<1, 3>>
+    pushing_force_vectors() const;
 
     void
     add_parameters(ParameterHandler &prm);

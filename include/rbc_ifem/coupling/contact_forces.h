@@ -1,0 +1,182 @@
+#ifndef rbc_ifem_coupling_contact_forces_h
+#define rbc_ifem_coupling_contact_forces_h
+
+#include <rbc_ifem/coupling/cell_force.h>
+#include <rbc_ifem/coupling/parameters.h>
+#include <rbc_ifem/membrane/membrane.h>
+
+#include <memory>
+#include <optional>
+#include <utility>
+#include <vector>
+
+namespace rbc_ifem
+{
+  class CellPopulation;
+
+  /**
+   * A potential of the gap h between two surfaces per unit area, φ(h)
+   * [pN/µm], and its pressure p(h) = -φ'(h) [pN/µm²], with p > 0 pushing
+   * the surfaces apart; zero beyond a cutoff.
+   */
+  class GapPotential
+  {
+  public:
+    virtual ~GapPotential() = default;
+
+    /// Beyond this gap φ = p = 0 [µm].
+    virtual double
+    cutoff() const = 0;
+
+    /// φ(h) for 0 < h.
+    virtual double
+    energy(const double h) const = 0;
+
+    /// p(h) and dp/dh for 0 < h < cutoff().
+    virtual std::pair<double, double>
+    pressure(const double h) const = 0;
+  };
+
+  /**
+   * Repulsion: p(h) = p0 (Δ/h - 1)² for h < Δ, so p and p' vanish at the
+   * range Δ and p grows without bound as h -> 0.
+   */
+  class RepulsivePotential : public GapPotential
+  {
+  public:
+    RepulsivePotential(const double pressure_scale, const double range);
+
+    double
+    cutoff() const override;
+    double
+    energy(const double h) const override;
+    std::pair<double, double>
+    pressure(const double h) const override;
+
+  private:
+    const double p0;    ///< [pN/µm²]
+    const double range; ///< Δ [µm]
+  };
+
+  /**
+   * Aggregation: the Morse potential φ(h) = D_e [e^{2β(r0-h)} -
+   * 2 e^{β(r0-h)}], the minimum -D_e at h = r0, attractive beyond it.
+   */
+  class MorsePotential : public GapPotential
+  {
+  public:
+    MorsePotential(const double well_depth,
+                   const double width,
+                   const double distance,
+                   const double cutoff);
+
+    double
+    cutoff() const override;
+    double
+    energy(const double h) const override;
+    std::pair<double, double>
+    pressure(const double h) const override;
+
+  private:
+    const double depth;    ///< D_e [pN/µm]
+    const double beta;     ///< β [1/µm]
+    const double distance; ///< r0 [µm]
+    const double gap_cutoff;
+  };
+
+  /**
+   * A GapPotential between the membranes of different cells, as a sum over
+   * pairs of membrane points i, j of different cells,
+   *
+   *   E = Σ a_i a_j ψ(|x_i - x_j|),  ψ(r) = p(r) / (2π r),
+   *
+   * with a_i the reference area of point i (its lumped ∫ N_i dA0). The
+   * pair density ψ is the one for which a flat membrane at a gap h from a
+   * membrane point carries E per area Σ_j a_j ψ -> 2π ∫_h^∞ ψ(r) r dr =
+   * φ(h): the membranes feel the gap potential whatever their mesh. ψ is
+   * shifted so that it and ψ' vanish at the cutoff. Forces are the exact
+   * -∂E/∂x, central and pairwise equal and opposite, so the total force
+   * and torque vanish. Pairs are found in PointBins, never all pairs.
+   */
+  class MembraneInteraction : public CellForce
+  {
+  public:
+    MembraneInteraction(const std::vector<std::unique_ptr<Membrane>> &membranes,
+                        std::unique_ptr<GapPotential> potential);
+
+    CellForceReport
+    add_forces(const std::vector<Vector<double>> &positions,
+               std::vector<Vector<double>>       &forces) const override;
+
+  private:
+    /// ψ(r) and ψ'(r), shifted to vanish at the cutoff.
+    std::pair<double, double>
+    pair_density(const double r) const;
+    std::pair<double, double>
+    unshifted_pair_density(const double r) const;
+
+    const std::vector<std::unique_ptr<Membrane>> &membranes;
+    const std::unique_ptr<GapPotential>           potential;
+    std::vector<std::vector<double>>              reference_areas;
+    std::pair<double, double>                     at_cutoff;
+  };
+
+  /**
+   * The capillary wall, a cylinder of radius R about the x axis, repels
+   * every membrane point at the gap d = R - sqrt(y² + z²) with the energy
+   * E = Σ a_i φ(d_i) of a RepulsivePotential. External: its total is part
+   * of the held force. A point at or beyond the wall has infinite energy
+   * (and the run's gap check stops it).
+   */
+  class WallRepulsion : public CellForce
+  {
+  public:
+    WallRepulsion(const std::vector<std::unique_ptr<Membrane>> &membranes,
+                  const double                                  radius,
+                  const RepulsivePotential                     &potential);
+
+    CellForceReport
+    add_forces(const std::vector<Vector<double>> &positions,
+               std::vector<Vector<double>>       &forces) const override;
+
+  private:
+    const std::vector<std::unique_ptr<Membrane>> &membranes;
+    const double                                  radius;
+    const RepulsivePotential                      potential;
+    std::vector<std::vector<double>>              reference_areas;
+  };
+
+  /**
+   * A constant force on each cell (the pushing forces of Immersed cells),
+   * spread over its points by their reference areas: E = -Σ_c F_c · Σ_i
+   * (a_i / A_c) x_i. External.
+   */
+  class PushingForce : public CellForce
+  {
+  public:
+    PushingForce(const std::vector<std::unique_ptr<Membrane>> &membranes,
+                 const std::vector<Tensor<1, 3>>              &cell_forces);
+
+    CellForceReport
+    add_forces(const std::vector<Vector<double>> &positions,
+               std::vector<Vector<double>>       &forces) const override;
+
+  private:
+    const std::vector<std::unique_ptr<Membrane>> &membranes;
+    const std::vector<Tensor<1, 3>>               cell_forces;
+    /// a_i / A_c of every point.
+    std::vector<std::vector<double>> weights;
+  };
+
+  /**
+   * Add the forces of subsection Cell interactions to @p cells: the
+   * repulsion between cells and the aggregation (if on), and the repulsion
+   * from a capillary wall of radius @p wall_radius (if there is one).
+   */
+  void
+  add_interaction_forces(CellPopulation              &cells,
+                         const InteractionParameters &parameters,
+                         const std::optional<double>  wall_radius);
+} // namespace rbc_ifem
+
+#endif

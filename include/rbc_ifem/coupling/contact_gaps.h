@@ -1,0 +1,44 @@
+#ifndef rbc_ifem_coupling_contact_gaps_h
+#define rbc_ifem_coupling_contact_gaps_h
+
+#include <rbc_ifem/membrane/membrane.h>
+
+#include <deal.II/lac/vector.h>
+
+#include <limits>
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace rbc_ifem
+{
+  using namespace dealii;
+
+  /// How close one cell comes to the others and to the wall [µm].
+  struct CellGaps
+  {
+    /**
+     * The smallest gap from a point of this cell's membrane to any other
+     * cell's membrane: the distance of the point from the tangent plane at
+     * the other membrane's nearest point, negative where the point lies
+     * inside the other cell (the membranes cross). Infinite when alone.
+     */
+    double to_cells = std::numeric_limits<double>::infinity();
+    /// The smallest R - sqrt(y² + z²) of its points, negative outside the
+    /// lumen; infinite where there is no wall.
+    double to_wall = std::numeric_limits<double>::infinity();
+  };
+
+  /**
+   * The gaps of every cell at the positions @p x (one Vector per cell, as
+   * CellPopulation holds them), with a capillary wall of radius
+   * @p wall_radius about the x axis if there is one. The nearest points of
+   * other cells come from one r-tree over all points, not all pairs.
+   */
+  std::vector<CellGaps>
+  measure_gaps(const std::vector<std::unique_ptr<Membrane>> &membranes,
+               const std::vector<Vector<double>>            &x,
+               const std::optional<double>                   wall_radius);
+} // namespace rbc_ifem
+
+#endif

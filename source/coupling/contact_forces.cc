@@ -1,0 +1,269 @@
+#include <rbc_ifem/coupling/cell_population.h>
+#include <rbc_ifem/coupling/contact_forces.h>
+#include <rbc_ifem/coupling/point_bins.h>
+
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace rbc_ifem
+{
+  namespace
+  {
+    /// The reference area a_i = ∫ N_i dA0 of every point of every cell.
+    std::vector<std::vector<double>>
+    reference_point_areas(
+      const std::vector<std::unique_ptr<Membrane>> &membranes)
+    {
+      std::vector<std::vector<double>> areas;
+      for (const auto &membrane : membranes)
+        areas.push_back(
+          membrane->nodal_areas(membrane->reference_positions()));
+      return areas;
+    }
+
+    Point<3>
+    node_position(const Vector<double>                        &x,
+                  const std::array<types::global_dof_index, 3> &dofs)
+    {
+      return Point<3>(x[dofs[0]], x[dofs[1]], x[dofs[2]]);
+    }
+
+    void
+    add_node_force(Vector<double>                               &forces,
+                   const std::array<types::global_dof_index, 3> &dofs,
+                   const Tensor<1, 3>                           &force)
+    {
+      for (unsigned int d = 0; d < 3; ++d)
+        forces[dofs[d]] += force[d];
+    }
+  } // namespace
+
+  RepulsivePotential::RepulsivePotential(const double pressure_scale,
+                                         const double range)
+    : p0(pressure_scale)
+    , range(range)
+  {}
+
+  double
+  RepulsivePotential::cutoff() const
+  {
+    return range;
+  }
+
+  double
+  RepulsivePotential::energy(const double h) const
+  {
+    if (h >= range)
+      return 0.;
+    // φ(h) = ∫_h^Δ p0 (Δ/s - 1)² ds.
+    return p0 * (range * range * (1. / h - 1. / range) -
+                 2. * range * std::log(range / h) + (range - h));
+  }
+
+  std::pair<double, double>
+  RepulsivePotential::pressure(const double h) const
+  {
+    const double excess = range / h - 1.;
+    return {p0 * excess * excess, -2. * p0 * excess * range / (h * h)};
+  }
+
+  MorsePotential::MorsePotential(const double well_depth,
+                                 const double width,
+                                 const double distance,
+                                 const double cutoff)
+    : depth(well_depth)
+    , beta(width)
+    , distance(distance)
+    , gap_cutoff(cutoff)
+  {}
+
+  double
+  MorsePotential::cutoff() const
+  {
+    return gap_cutoff;
+  }
+
+  double
+  MorsePotential::energy(const double h) const
+  {
+    const auto phi = [this](const double gap) {
+      const double e = std::exp(beta * (distance - gap));
+      return depth * (e * e - 2. * e);
+    };
+    return h < gap_cutoff ? phi(h) - phi(gap_cutoff) : 0.;
+  }
+
+  std::pair<double, double>
+  MorsePotential::pressure(const double h) const
+  {
+    const double e = std::exp(beta * (distance - h));
+    return {2. * beta * depth * (e * e - e),
+            2. * beta * beta * depth * (e - 2. * e * e)};
+  }
+
+  MembraneInteraction::MembraneInteraction(
+    const std::vector<std::unique_ptr<Membrane>> &membranes,
+    std::unique_ptr<GapPotential>                 potential)
+    : membranes(membranes)
+    , potential(std::move(potential))
+    , reference_areas(reference_point_areas(membranes))
+    , at_cutoff(unshifted_pair_density(this->potential->cutoff()))
+  {}
+
+  std::pair<double, double>
+  MembraneInteraction::unshifted_pair_density(const double r) const
+  {
+    const auto [p, dp] = potential->pressure(r);
+    const double two_pi = 2. * numbers::PI;
+    return {p / (two_pi * r), (dp * r - p) / (two_pi * r * r)};
+  }
+
+  std::pair<double, double>
+  MembraneInteraction::pair_density(const double r) const
+  {
+    const auto [psi, dpsi] = unshifted_pair_density(r);
+    const double rc        = potential->cutoff();
+    return {psi - at_cutoff.first - at_cutoff.second * (r - rc),
+            dpsi - at_cutoff.second};
+  }
+
+  CellForceReport
+  MembraneInteraction::add_forces(const std::vector<Vector<double>> &x,
+                                  std::vector<Vector<double>> &forces) const
+  {
+    // Every point with its cell and node, in one list for the bins.
+    std::vector<Point<3>>                             points;
+    std::vector<std::pair<unsigned int, unsigned int>> owner;
+    for (unsigned int c = 0; c < membranes.size(); ++c)
+      {
+        const auto &nodes = membranes[c]->nodes();
+        for (unsigned int n = 0; n < nodes.size(); ++n)
+          {
+            points.push_back(node_position(x[c], nodes[n]));
+            owner.emplace_back(c, n);
+          }
+      }
+
+    CellForceReport report;
+    PointBins(points, potential->cutoff())
+      .for_each_close_pair([&](const unsigned int i, const unsigned int j) {
+        const auto [ci, ni] = owner[i];
+        const auto [cj, nj] = owner[j];
+        if (ci == cj)
+          return;
+        const Tensor<1, 3> separation = points[i] - points[j];
+        const double       r          = separation.norm();
+        const double weight = reference_areas[ci][ni] * reference_areas[cj][nj];
+        const auto [psi, dpsi] = pair_density(r);
+        report.energy += weight * psi;
+        const Tensor<1, 3> force = -weight * dpsi / r * separation;
+        add_node_force(forces[ci], membranes[ci]->nodes()[ni], force);
+        add_node_force(forces[cj], membranes[cj]->nodes()[nj], -force);
+      });
+    return report;
+  }
+
+  WallRepulsion::WallRepulsion(
+    const std::vector<std::unique_ptr<Membrane>> &membranes,
+    const double                                  radius,
+    const RepulsivePotential                     &potential)
+    : membranes(membranes)
+    , radius(radius)
+    , potential(potential)
+    , reference_areas(reference_point_areas(membranes))
+  {}
+
+  CellForceReport
+  WallRepulsion::add_forces(const std::vector<Vector<double>> &x,
+                            std::vector<Vector<double>>       &forces) const
+  {
+    CellForceReport report;
+    for (unsigned int c = 0; c < membranes.size(); ++c)
+      {
+        const auto &nodes = membranes[c]->nodes();
+        for (unsigned int n = 0; n < nodes.size(); ++n)
+          {
+            const Point<3> p    = node_position(x[c], nodes[n]);
+            const double   rho  = std::hypot(p[1], p[2]);
+            const double   gap  = radius - rho;
+            const double   area = reference_areas[c][n];
+            if (gap >= potential.cutoff())
+              continue;
+            if (gap <= 0.)
+              {
+                report.energy = std::numeric_limits<double>::infinity();
+                continue;
+              }
+            report.energy += area * potential.energy(gap);
+            // F = -a φ'(d) ∂d/∂x = a p(d) ∂d/∂x, with ∂d/∂x = -(0, y, z)/ρ.
+            const double pressure = potential.pressure(gap).first;
+            Tensor<1, 3> force;
+            force[1] = -area * pressure * p[1] / rho;
+            force[2] = -area * pressure * p[2] / rho;
+            add_node_force(forces[c], nodes[n], force);
+            report.external_force += force;
+          }
+      }
+    return report;
+  }
+
+  PushingForce::PushingForce(
+    const std::vector<std::unique_ptr<Membrane>> &membranes,
+    const std::vector<Tensor<1, 3>>              &cell_forces)
+    : membranes(membranes)
+    , cell_forces(cell_forces)
+    , weights(reference_point_areas(membranes))
+  {
+    AssertDimension(cell_forces.size(), membranes.size());
+    for (std::vector<double> &w : weights)
+      {
+        const double area = std::accumulate(w.begin(), w.end(), 0.);
+        for (double &a : w)
+          a /= area;
+      }
+  }
+
+  CellForceReport
+  PushingForce::add_forces(const std::vector<Vector<double>> &x,
+                           std::vector<Vector<double>>       &forces) const
+  {
+    CellForceReport report;
+    for (unsigned int c = 0; c < membranes.size(); ++c)
+      {
+        const auto &nodes = membranes[c]->nodes();
+        for (unsigned int n = 0; n < nodes.size(); ++n)
+          {
+            const Tensor<1, 3> force = weights[c][n] * cell_forces[c];
+            report.energy -= force * node_position(x[c], nodes[n]);
+            add_node_force(forces[c], nodes[n], force);
+          }
+        report.external_force += cell_forces[c];
+      }
+    return report;
+  }
+
+  void
+  add_interaction_forces(CellPopulation              &cells,
+                         const InteractionParameters &parameters,
+                         const std::optional<double>  wall_radius)
+  {
+    if (parameters.repulsion_pressure > 0. && cells.size() > 1)
+      cells.add_force(std::make_unique<MembraneInteraction>(
+        cells.membranes(),
+        std::make_unique<RepulsivePotential>(parameters.repulsion_pressure,
+                                             parameters.repulsion_range)));
+    if (parameters.aggregation && cells.size() > 1)
+      cells.add_force(std::make_unique<MembraneInteraction>(
+        cells.membranes(),
+        std::make_unique<MorsePotential>(parameters.aggregation_energy,
+                                         parameters.aggregation_width,
+                                         parameters.aggregation_distance,
+                                         parameters.aggregation_cutoff)));
+    if (parameters.wall_pressure > 0. && wall_radius)
+      cells.add_force(std::make_unique<WallRepulsion>(
+        cells.membranes(),
+        *wall_radius,
+        RepulsivePotential(parameters.wall_pressure, parameters.wall_range)));
+  }
+} // namespace rbc_ifem

@@ -22,7 +22,9 @@ import matplotlib.pyplot as plt
 def read(path, cell=None):
     """The rows of a CSV file as dicts of floats, only those of CELL if given."""
     with open(path) as f:
-        rows = [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+        # Empty fields (min_gap of a lone cell) are left out.
+        rows = [{k: float(v) for k, v in row.items() if v != ""}
+                for row in csv.DictReader(f)]
     return [r for r in rows if cell is None or r["cell"] == cell]
 
 

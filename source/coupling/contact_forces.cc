@@ -1,6 +1,7 @@
 #include <rbc_ifem/coupling/cell_population.h>
 #include <rbc_ifem/coupling/contact_forces.h>
 #include <rbc_ifem/coupling/point_bins.h>
+#include <rbc_ifem/geometry/capillary_mesh.h>
 
 #include <cmath>
 #include <limits>
@@ -17,13 +18,12 @@ namespace rbc_ifem
     {
       std::vector<std::vector<double>> areas;
       for (const auto &membrane : membranes)
-        areas.push_back(
-          membrane->nodal_areas(membrane->reference_positions()));
+        areas.push_back(membrane->nodal_areas(membrane->reference_positions()));
       return areas;
     }
 
     Point<3>
-    node_position(const Vector<double>                        &x,
+    node_position(const Vector<double>                         &x,
                   const std::array<types::global_dof_index, 3> &dofs)
     {
       return Point<3>(x[dofs[0]], x[dofs[1]], x[dofs[2]]);
@@ -104,9 +104,11 @@ namespace rbc_ifem
 
   MembraneInteraction::MembraneInteraction(
     const std::vector<std::unique_ptr<Membrane>> &membranes,
-    std::unique_ptr<GapPotential>                 potential)
+    std::unique_ptr<GapPotential>                 potential,
+    const std::optional<double>                  &period)
     : membranes(membranes)
     , potential(std::move(potential))
+    , period(period)
     , reference_areas(reference_point_areas(membranes))
     , at_cutoff(unshifted_pair_density(this->potential->cutoff()))
   {}
@@ -114,7 +116,7 @@ namespace rbc_ifem
   std::pair<double, double>
   MembraneInteraction::unshifted_pair_density(const double r) const
   {
-    const auto [p, dp] = potential->pressure(r);
+    const auto [p, dp]  = potential->pressure(r);
     const double two_pi = 2. * numbers::PI;
     return {p / (two_pi * r), (dp * r - p) / (two_pi * r * r)};
   }
@@ -132,25 +134,40 @@ namespace rbc_ifem
   MembraneInteraction::add_forces(const std::vector<Vector<double>> &x,
                                   std::vector<Vector<double>> &forces) const
   {
-    // Every point with its cell and node, in one list for the bins.
-    std::vector<Point<3>>                             points;
+    // Every point with its cell and node, in one list for the bins: in a
+    // periodic segment each where it lies in the segment, and those within
+    // the cutoff of its end once more one period before its start. A pair
+    // across the ends is then found once, as a point and an image.
+    const double          cutoff = potential->cutoff();
+    std::vector<Point<3>> points;
     std::vector<std::pair<unsigned int, unsigned int>> owner;
-    for (unsigned int c = 0; c < membranes.size(); ++c)
-      {
-        const auto &nodes = membranes[c]->nodes();
-        for (unsigned int n = 0; n < nodes.size(); ++n)
-          {
-            points.push_back(node_position(x[c], nodes[n]));
-            owner.emplace_back(c, n);
-          }
-      }
+    std::vector<bool>                                  image;
+    for (const bool images : {false, true})
+      for (unsigned int c = 0; c < membranes.size(); ++c)
+        {
+          const auto &nodes = membranes[c]->nodes();
+          for (unsigned int n = 0; n < nodes.size(); ++n)
+            {
+              Point<3> p =
+                wrap_into_segment(node_position(x[c], nodes[n]), period);
+              if (images)
+                {
+                  if (!period || p[0] < *period - cutoff)
+                    continue;
+                  p[0] -= *period;
+                }
+              points.push_back(p);
+              owner.emplace_back(c, n);
+              image.push_back(images);
+            }
+        }
 
     CellForceReport report;
-    PointBins(points, potential->cutoff())
+    PointBins(points, cutoff)
       .for_each_close_pair([&](const unsigned int i, const unsigned int j) {
         const auto [ci, ni] = owner[i];
         const auto [cj, nj] = owner[j];
-        if (ci == cj)
+        if (ci == cj || (image[i] && image[j]))
           return;
         const Tensor<1, 3> separation = points[i] - points[j];
         const double       r          = separation.norm();
@@ -246,20 +263,23 @@ namespace rbc_ifem
   void
   add_interaction_forces(CellPopulation              &cells,
                          const InteractionParameters &parameters,
-                         const std::optional<double>  wall_radius)
+                         const std::optional<double>  wall_radius,
+                         const std::optional<double>  period)
   {
     if (parameters.repulsion_pressure > 0. && cells.size() > 1)
       cells.add_force(std::make_unique<MembraneInteraction>(
         cells.membranes(),
         std::make_unique<RepulsivePotential>(parameters.repulsion_pressure,
-                                             parameters.repulsion_range)));
+                                             parameters.repulsion_range),
+        period));
     if (parameters.aggregation && cells.size() > 1)
       cells.add_force(std::make_unique<MembraneInteraction>(
         cells.membranes(),
         std::make_unique<MorsePotential>(parameters.aggregation_energy,
                                          parameters.aggregation_width,
                                          parameters.aggregation_distance,
-                                         parameters.aggregation_cutoff)));
+                                         parameters.aggregation_cutoff),
+        period));
     if (parameters.wall_pressure > 0. && wall_radius)
       cells.add_force(std::make_unique<WallRepulsion>(
         cells.membranes(),

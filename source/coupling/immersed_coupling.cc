@@ -1,4 +1,5 @@
 #include <rbc_ifem/coupling/immersed_coupling.h>
+#include <rbc_ifem/geometry/capillary_mesh.h>
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/grid/filtered_iterator.h>
@@ -13,9 +14,11 @@ namespace rbc_ifem
   ImmersedCoupling::ImmersedCoupling(
     const parallel::shared::Triangulation<3> &triangulation,
     const Mapping<3>                         &mapping,
-    const DoFHandler<3>                      &fluid_dof_handler)
+    const DoFHandler<3>                      &fluid_dof_handler,
+    const std::optional<double>              &period)
     : triangulation(triangulation)
     , dof_handler(fluid_dof_handler)
+    , period(period)
     , cache(triangulation, mapping)
     , particles(triangulation, mapping)
   {
@@ -32,10 +35,9 @@ namespace rbc_ifem
     cell_hints.resize(points.size());
     for (unsigned int i = 0; i < points.size(); ++i)
       {
+        const Point<3> point = wrap_into_segment(points[i], period);
         const auto [cell, reference] =
-          GridTools::find_active_cell_around_point(cache,
-                                                   points[i],
-                                                   cell_hints[i]);
+          GridTools::find_active_cell_around_point(cache, point, cell_hints[i]);
         if (cell == triangulation.end())
           throw std::runtime_error(
             "membrane point " + std::to_string(i) + " at (" +
@@ -45,7 +47,7 @@ namespace rbc_ifem
             "or touched its wall.");
         cell_hints[i] = cell;
         if (cell->is_locally_owned())
-          particles.insert_particle(points[i], reference, i, cell);
+          particles.insert_particle(point, reference, i, cell);
       }
     n_membrane_points = points.size();
   }

@@ -97,10 +97,10 @@ namespace rbc_ifem
                          "a range below " + what + ", " + to_text(limit) +
                            " µm.");
     };
-    const double cell_limit = std::min(cell_diameter, segment_length / 2.);
-    const std::string cell_what =
-      cell_limit < cell_diameter ? "half the capillary length" :
-                                   "the cell diameter";
+    const double      cell_limit = std::min(cell_diameter, segment_length / 2.);
+    const std::string cell_what  = cell_limit < cell_diameter ?
+                                     "half the capillary length" :
+                                     "the cell diameter";
     if (repulsion_pressure > 0.)
       require_shorter("Cell interactions/Repulsion range",
                       repulsion_range,

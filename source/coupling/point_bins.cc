@@ -23,12 +23,12 @@ namespace rbc_ifem
   std::uint64_t
   PointBins::key(const std::array<std::int64_t, 3> &bin)
   {
-    constexpr std::int64_t offset = std::int64_t(1) << 20;
-    constexpr std::uint64_t mask  = (std::uint64_t(1) << 21) - 1;
+    constexpr std::int64_t  offset = std::int64_t(1) << 20;
+    constexpr std::uint64_t mask   = (std::uint64_t(1) << 21) - 1;
     std::uint64_t           result = 0;
     for (const std::int64_t index : bin)
-      result = (result << 21) | (static_cast<std::uint64_t>(index + offset) &
-                                 mask);
+      result =
+        (result << 21) | (static_cast<std::uint64_t>(index + offset) & mask);
     return result;
   }
 } // namespace rbc_ifem

@@ -2,6 +2,7 @@
 #include <rbc_ifem/base/output.h>
 #include <rbc_ifem/base/solver_failure.h>
 #include <rbc_ifem/diffusion/co_diffusion.h>
+#include <rbc_ifem/geometry/capillary_mesh.h>
 
 #include <deal.II/base/function.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -222,10 +223,12 @@ namespace rbc_ifem
     const std::function<double(unsigned int)> &permeability,
     const types::boundary_id                   pressure_boundary,
     const MPI_Comm                             communicator,
-    TimerOutput                               &timer)
+    TimerOutput                               &timer,
+    const std::optional<double>               &period)
     : parameters(parameters)
     , permeability(permeability)
     , pressure_boundary(pressure_boundary)
+    , period(period)
     , communicator(communicator)
     , timer(timer)
     , fe(parameters.degree)
@@ -268,6 +271,17 @@ namespace rbc_ifem
                                              Functions::ConstantFunction<3>(
                                                parameters.alveolar_pressure),
                                              constraints);
+    if (period)
+      {
+        std::vector<GridTools::PeriodicFacePair<DoFHandler<3>::cell_iterator>>
+          ends;
+        GridTools::collect_periodic_faces(dof_handler,
+                                          DiffusionBoundary::inlet_end,
+                                          DiffusionBoundary::outlet_end,
+                                          /*direction=*/0,
+                                          ends);
+        DoFTools::make_periodicity_constraints<3, 3>(ends, constraints);
+      }
     constraints.close();
   }
 
@@ -309,9 +323,8 @@ namespace rbc_ifem
            multiplier_dof_handlers[m]->active_cell_iterators())
         {
           fe_values.reinit(cell);
-          points.insert(points.end(),
-                        fe_values.get_quadrature_points().begin(),
-                        fe_values.get_quadrature_points().end());
+          for (const Point<3> &p : fe_values.get_quadrature_points())
+            points.push_back(wrap_into_segment(p, period));
           coupling->JxW.push_back(fe_values.get_JxW_values());
           for (const double dA : fe_values.get_JxW_values())
             area += dA;

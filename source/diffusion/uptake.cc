@@ -36,7 +36,7 @@ namespace rbc_ifem
                             geometry,
                             mesh_parameters.diffusion_global_refinements);
       refine_near_points(mesh,
-                         band_points,
+                         points_in_segment(band_points, geometry.period()),
                          mesh_parameters.band_width,
                          band_refinements);
     }
@@ -46,7 +46,8 @@ namespace rbc_ifem
       [&d](const unsigned int id) { return d.permeability(id); },
       DiffusionBoundary::alveolar_surface,
       communicator,
-      timer);
+      timer,
+      geometry.period());
     diffusion.setup(mesh, surfaces, mapping);
     diffusion.assemble();
     diffusion.solve();

@@ -88,7 +88,10 @@ namespace rbc_ifem
         cells.add_force(
           std::make_unique<PushingForce>(cells.membranes(), pushes));
       }
-    add_interaction_forces(cells, parameters.interactions, domain.wall_radius);
+    add_interaction_forces(cells,
+                           parameters.interactions,
+                           domain.wall_radius,
+                           domain.period);
     contacts = cells.size() > 1 || domain.wall_radius.has_value();
 
     record.flow.set_header(
@@ -116,14 +119,15 @@ namespace rbc_ifem
       TimerOutput::Scope scope(timer, "fluid mesh");
       domain.create_mesh(triangulation);
       refine_near_points(triangulation,
-                         cells.points(),
+                         points_in_segment(cells.points(), domain.period),
                          parameters.mesh.band_width,
                          parameters.mesh.fluid_band_refinements);
     }
     fluid.setup();
     coupling = std::make_unique<ImmersedCoupling>(triangulation,
                                                   fluid.get_mapping(),
-                                                  fluid.get_dof_handler());
+                                                  fluid.get_dof_handler(),
+                                                  domain.period);
     try
       {
         coupling->place(cells.points());
@@ -326,8 +330,10 @@ namespace rbc_ifem
   IFEMSimulation::record_shapes()
   {
     const std::vector<CellShape> shapes = cells.shapes();
-    const std::vector<CellGaps>  gaps =
-      measure_gaps(cells.membranes(), cells.positions(), domain.wall_radius);
+    const std::vector<CellGaps>  gaps   = measure_gaps(cells.membranes(),
+                                                    cells.positions(),
+                                                    domain.wall_radius,
+                                                    domain.period);
     // A gap to nothing (one cell, no wall) is left empty.
     const auto gap_text = [](const double gap) {
       return std::isfinite(gap) ? csv_row(gap) : std::string();
@@ -364,8 +370,10 @@ namespace rbc_ifem
     std::vector<CellGaps> gaps;
     {
       TimerOutput::Scope scope(timer, "contact check");
-      gaps =
-        measure_gaps(cells.membranes(), cells.positions(), domain.wall_radius);
+      gaps = measure_gaps(cells.membranes(),
+                          cells.positions(),
+                          domain.wall_radius,
+                          domain.period);
     }
     for (unsigned int c = 0; c < gaps.size(); ++c)
       {
@@ -556,7 +564,8 @@ namespace rbc_ifem
             double smallest_gap = std::numeric_limits<double>::infinity();
             for (const CellGaps &gaps : measure_gaps(cells.membranes(),
                                                      cells.positions(),
-                                                     domain.wall_radius))
+                                                     domain.wall_radius,
+                                                     domain.period))
               smallest_gap = std::min(smallest_gap, gaps.to_cells);
             progress << ", smallest gap between cells " << smallest_gap
                      << " µm";

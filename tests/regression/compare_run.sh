@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Usage: compare_run.sh [-r TOLERANCE] [-n RANKS -m MPIEXEC] [-b FILE:COLUMN:LOW:HIGH]...
-#                       [-a FILE:COLUMN:LOW:HIGH]...
+#                       [-a FILE:COLUMN:LOW:HIGH]... [-e FILE:PREFIX:TOLERANCE]...
 #                       RBC_IFEM PRM EXPECTED_DIR NUMDIFF
 #
 # Runs an experiment (on RANKS MPI ranks with -n) in an empty directory and
@@ -14,6 +14,9 @@
 # output directory) lies in [LOW, HIGH]: a band around a published value.
 # Each -a checks that every row's COLUMN lies in [LOW, HIGH] (a gap that
 # stays positive over the run), and prints the smallest and largest value.
+# Each -e checks that on every row of FILE the columns whose names start
+# with PREFIX agree within the relative TOLERANCE (cells that symmetry makes
+# equal), and prints the largest relative spread.
 set -u
 source "$(dirname "$0")/../script_setup.sh"
 tolerance=1e-8
@@ -21,13 +24,15 @@ ranks=
 mpiexec=
 bands=()
 all_rows=()
-while getopts "r:n:m:b:a:" option; do
+equal=()
+while getopts "r:n:m:b:a:e:" option; do
   case $option in
     r) tolerance=$OPTARG ;;
     n) ranks=$OPTARG ;;
     m) mpiexec=$OPTARG ;;
     b) bands+=("$OPTARG") ;;
     a) all_rows+=("$OPTARG") ;;
+    e) equal+=("$OPTARG") ;;
     *) exit 2 ;;
   esac
 done
@@ -97,6 +102,19 @@ for band in "${all_rows[@]}"; do
     echo "ok: $file $name over the run lies in [$smallest, $largest], within [$low, $high]"
   else
     echo "FAILED: $file $name over the run lies in [$smallest, $largest], not within [$low, $high]"
+    failed=1
+  fi
+done
+for check in "${equal[@]}"; do
+  IFS=: read -r file prefix limit <<<"$check"
+  spread=$(awk -F, -v prefix="$prefix" 'FNR == 1 { for (i = 1; i <= NF; ++i) if (index($i, prefix) == 1) c[++n] = i; next }
+                                         { lo = hi = $(c[1]); for (j = 2; j <= n; ++j) { if ($(c[j]) < lo) lo = $(c[j]); if ($(c[j]) > hi) hi = $(c[j]) }
+                                           s = (hi - lo) / (hi > -lo ? hi : -lo); if (s > worst) worst = s }
+                                         END { if (n > 1) printf "%.3g", worst }' "$directory/$file")
+  if awk -v s="$spread" -v t="$limit" 'BEGIN { exit !(s != "" && s <= t) }'; then
+    echo "ok: $file columns $prefix* agree within $spread (relative), at most $limit"
+  else
+    echo "FAILED: $file columns $prefix* spread by ${spread:-nothing} (relative), more than $limit"
     failed=1
   fi
 done

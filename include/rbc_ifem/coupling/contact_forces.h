@@ -96,13 +96,16 @@ namespace rbc_ifem
    * φ(h): the membranes feel the gap potential whatever their mesh. ψ is
    * shifted so that it and ψ' vanish at the cutoff. Forces are the exact
    * -∂E/∂x, central and pairwise equal and opposite, so the total force
-   * and torque vanish. Pairs are found in PointBins, never all pairs.
+   * and torque vanish. Pairs are found in PointBins, never all pairs. In a
+   * periodic segment (a @p period along x) a pair's separation is the
+   * shortest across the ends, so cells interact through them.
    */
   class MembraneInteraction : public CellForce
   {
   public:
     MembraneInteraction(const std::vector<std::unique_ptr<Membrane>> &membranes,
-                        std::unique_ptr<GapPotential> potential);
+                        std::unique_ptr<GapPotential>                 potential,
+                        const std::optional<double> &period = std::nullopt);
 
     CellForceReport
     add_forces(const std::vector<Vector<double>> &positions,
@@ -117,6 +120,7 @@ namespace rbc_ifem
 
     const std::vector<std::unique_ptr<Membrane>> &membranes;
     const std::unique_ptr<GapPotential>           potential;
+    const std::optional<double>                   period;
     std::vector<std::vector<double>>              reference_areas;
     std::pair<double, double>                     at_cutoff;
   };
@@ -170,13 +174,15 @@ namespace rbc_ifem
 
   /**
    * Add the forces of subsection Cell interactions to @p cells: the
-   * repulsion between cells and the aggregation (if on), and the repulsion
-   * from a capillary wall of radius @p wall_radius (if there is one).
+   * repulsion between cells and the aggregation (if on), across the ends
+   * of a segment with a @p period, and the repulsion from a capillary wall
+   * of radius @p wall_radius (if there is one).
    */
   void
   add_interaction_forces(CellPopulation              &cells,
                          const InteractionParameters &parameters,
-                         const std::optional<double>  wall_radius);
+                         const std::optional<double>  wall_radius,
+                         const std::optional<double>  period);
 } // namespace rbc_ifem
 
 #endif

@@ -32,13 +32,15 @@ namespace rbc_ifem
   /**
    * The gaps of every cell at the positions @p x (one Vector per cell, as
    * CellPopulation holds them), with a capillary wall of radius
-   * @p wall_radius about the x axis if there is one. The nearest points of
+   * @p wall_radius about the x axis if there is one, and in a segment
+   * periodic with @p period along x, across its ends. The nearest points of
    * other cells come from one r-tree over all points, not all pairs.
    */
   std::vector<CellGaps>
   measure_gaps(const std::vector<std::unique_ptr<Membrane>> &membranes,
                const std::vector<Vector<double>>            &x,
-               const std::optional<double>                   wall_radius);
+               const std::optional<double>                   wall_radius,
+               const std::optional<double> period = std::nullopt);
 } // namespace rbc_ifem
 
 #endif

@@ -11,6 +11,7 @@
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
 #include <deal.II/particles/particle_handler.h>
 
+#include <optional>
 #include <vector>
 
 namespace rbc_ifem
@@ -44,10 +45,17 @@ namespace rbc_ifem
   class ImmersedCoupling
   {
   public:
-    /// The first three components of the fluid FE must be the velocity.
+    /**
+     * The first three components of the fluid FE must be the velocity. With
+     * a @p period along x (a periodic segment), every point is placed where
+     * it lies in the segment (wrap_into_segment()): a membrane stays whole
+     * for its mechanics while its points are found, spread and
+     * interpolated across the ends.
+     */
     ImmersedCoupling(const parallel::shared::Triangulation<3> &triangulation,
                      const Mapping<3>                         &mapping,
-                     const DoFHandler<3> &fluid_dof_handler);
+                     const DoFHandler<3>         &fluid_dof_handler,
+                     const std::optional<double> &period = std::nullopt);
 
     /**
      * Place the points, at the start and after every move (the same list on
@@ -101,6 +109,7 @@ namespace rbc_ifem
 
     const parallel::shared::Triangulation<3> &triangulation;
     const DoFHandler<3>                      &dof_handler;
+    const std::optional<double>               period;
     const GridTools::Cache<3>                 cache;
     Particles::ParticleHandler<3>             particles;
     /// Per point, the fluid cell it was last found in: where the next search

@@ -18,17 +18,17 @@ namespace rbc_ifem
   struct InteractionParameters
   {
     /// Cell-cell repulsion: p(h) = p0 (Δ/h - 1)² for h < Δ.
-    double repulsion_pressure = 10.;  ///< p0 [pN/µm²]; 0: off
-    double repulsion_range    = 0.3;  ///< Δ [µm]
+    double repulsion_pressure = 10.; ///< p0 [pN/µm²]; 0: off
+    double repulsion_range    = 0.3; ///< Δ [µm]
     /// Aggregation: Morse φ(h) = D_e [e^{2β(r0-h)} - 2 e^{β(r0-h)}].
-    bool   aggregation        = false;
-    double aggregation_energy = 0.3;  ///< D_e [pN/µm = µJ/m²]
-    double aggregation_width  = 3.84; ///< β [1/µm]
+    bool   aggregation          = false;
+    double aggregation_energy   = 0.3;  ///< D_e [pN/µm = µJ/m²]
+    double aggregation_width    = 3.84; ///< β [1/µm]
     double aggregation_distance = 0.49; ///< r0 [µm]
     double aggregation_cutoff   = 2.;   ///< beyond it φ = 0 [µm]
     /// Wall repulsion: p(d) = p0 (Δ/d - 1)² for a wall gap d < Δ.
-    double wall_pressure = 10.;  ///< p0 [pN/µm²]; 0: off
-    double wall_range    = 0.3;  ///< Δ [µm]
+    double wall_pressure = 10.; ///< p0 [pN/µm²]; 0: off
+    double wall_range    = 0.3; ///< Δ [µm]
 
     void
     add_parameters(ParameterHandler &prm);

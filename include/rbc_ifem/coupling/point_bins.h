@@ -62,8 +62,8 @@ namespace rbc_ifem
     static std::uint64_t
     key(const std::array<std::int64_t, 3> &bin);
 
-    const std::vector<Point<3>>                               &points;
-    const double                                               bin_size;
+    const std::vector<Point<3>>                                 &points;
+    const double                                                 bin_size;
     std::unordered_map<std::uint64_t, std::vector<unsigned int>> bins;
   };
 } // namespace rbc_ifem

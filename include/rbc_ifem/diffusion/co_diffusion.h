@@ -20,6 +20,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -63,13 +64,18 @@ namespace rbc_ifem
     /**
      * @p permeability maps a material id of the volume mesh to αD
      * [µm²/(s Torr)]; @p pressure_boundary is the boundary id where
-     * P = P_A holds.
+     * P = P_A holds. With a @p period along x (a periodic capillary
+     * segment) P is periodic between the end faces
+     * (DiffusionBoundary::inlet_end and outlet_end), and each membrane
+     * point is located where it lies in the segment (wrap_into_segment()),
+     * so a cell may straddle the ends.
      */
     CODiffusion(const DiffusionParameters                 &parameters,
                 const std::function<double(unsigned int)> &permeability,
                 const types::boundary_id                   pressure_boundary,
                 const MPI_Comm                             communicator,
-                TimerOutput                               &timer);
+                TimerOutput                               &timer,
+                const std::optional<double> &period = std::nullopt);
     ~CODiffusion();
 
     /**
@@ -162,6 +168,7 @@ namespace rbc_ifem
     const DiffusionParameters                 parameters;
     const std::function<double(unsigned int)> permeability;
     const types::boundary_id                  pressure_boundary;
+    const std::optional<double>               period;
     const MPI_Comm                            communicator;
     TimerOutput                              &timer;
 

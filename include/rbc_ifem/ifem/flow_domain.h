@@ -49,6 +49,9 @@ namespace rbc_ifem
     /// must stay inside (the capillary's); none for the shear box, whose
     /// walls the cells never reach.
     std::optional<double> wall_radius;
+    /// The period along x of a periodic segment (Geometry/Periodic): cells
+    /// that leave at one end re-enter at the other.
+    std::optional<double> period;
 
     /// A velocity and a length scale for the Reynolds and capillary
     /// numbers, with their symbols for the log.
@@ -60,7 +63,8 @@ namespace rbc_ifem
     /**
      * The capillary of subsection Geometry with the cells of subsection
      * Layout (CellLayout: throws InputError if they do not fit), Poiseuille
-     * inflow of mean speed ū.
+     * inflow of mean speed ū; or, with Geometry/Periodic, the periodic
+     * segment driven by the pressure gradient of that mean speed.
      */
     static FlowDomain
     capillary(const Parameters &parameters);

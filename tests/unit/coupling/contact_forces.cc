@@ -12,7 +12,9 @@
 // - the wall pushes the cell back into the lumen: its external force points
 //   to the axis;
 // - measure_gaps() gives the gap the cells were placed at, and a negative
-//   gap once a cell is pushed into the other.
+//   gap once a cell is pushed into the other;
+// - in a periodic segment, the same pair with one cell moved by a period to
+//   the far end feels the same forces and has the same gap across the ends.
 
 #include <rbc_ifem/coupling/cell_population.h>
 #include <rbc_ifem/coupling/contact_forces.h>
@@ -38,7 +40,9 @@ namespace
 
   /// Move cell @p c by @p shift.
   void
-  translate(CellPopulation &cells, const unsigned int c, const Tensor<1, 3> &shift)
+  translate(CellPopulation     &cells,
+            const unsigned int  c,
+            const Tensor<1, 3> &shift)
   {
     std::vector<Vector<double>> x = cells.positions();
     for (unsigned int i = 0; i < x[c].size(); ++i)
@@ -52,9 +56,9 @@ namespace
   two_cells(const double gap, const double wall_gap)
   {
     const Tensor<1, 3> axis({1., 0., 0.});
-    auto cells = std::make_unique<CellPopulation>(
+    auto               cells = std::make_unique<CellPopulation>(
       std::vector<CellPlacement>{{Point<3>(0., 0., 0.), axis},
-                                 {Point<3>(10., 0., 0.), axis}},
+                                               {Point<3>(10., 0., 0.), axis}},
       coarse_cells(),
       MembraneParameters());
     // The gap is measured from the tangent planes of the nearest points,
@@ -80,7 +84,8 @@ namespace
   }
 
   Tensor<1, 3>
-  torque(const std::vector<Point<3>> &points, const std::vector<Tensor<1, 3>> &forces)
+  torque(const std::vector<Point<3>>     &points,
+         const std::vector<Tensor<1, 3>> &forces)
   {
     Tensor<1, 3> sum;
     for (unsigned int i = 0; i < points.size(); ++i)
@@ -94,7 +99,7 @@ namespace
   {
     const std::vector<Tensor<1, 3>> forces = cells.compute_forces();
     const unsigned int first = cells.membranes()[0]->nodes().size();
-    double axial = 0., largest = 0.;
+    double             axial = 0., largest = 0.;
     for (unsigned int i = 0; i < forces.size(); ++i)
       {
         largest = std::max(largest, forces[i].norm());
@@ -114,9 +119,9 @@ namespace
     for (Vector<double> &cell : v)
       for (double &entry : cell)
         entry = uniform(random);
-    const std::vector<Tensor<1, 3>> forces = cells.compute_forces();
-    double       directional = 0.;
-    unsigned int point       = 0;
+    const std::vector<Tensor<1, 3>> forces      = cells.compute_forces();
+    double                          directional = 0.;
+    unsigned int                    point       = 0;
     for (unsigned int c = 0; c < cells.size(); ++c)
       for (const auto &dofs : cells.membranes()[c]->nodes())
         {
@@ -144,23 +149,29 @@ namespace
   }
 
   void
-  check_potential(Checker &check, const GapPotential &potential,
-                  const std::string &what, const std::vector<double> &gaps)
+  check_potential(Checker                   &check,
+                  const GapPotential        &potential,
+                  const std::string         &what,
+                  const std::vector<double> &gaps)
   {
     for (const double h : gaps)
       {
         const double step = 1e-6;
         const double slope =
-          (potential.energy(h + step) - potential.energy(h - step)) / (2. * step);
-        const double p = potential.pressure(h).first;
-        const double dp =
-          (potential.pressure(h + step).first - potential.pressure(h - step).first) /
+          (potential.energy(h + step) - potential.energy(h - step)) /
           (2. * step);
+        const double p  = potential.pressure(h).first;
+        const double dp = (potential.pressure(h + step).first -
+                           potential.pressure(h - step).first) /
+                          (2. * step);
         std::cout << "  " << what << " at h = " << h << ": p " << p
-                  << ", -dφ/dh " << -slope << ", dp/dh " << potential.pressure(h).second
-                  << " (difference " << dp << ")\n";
+                  << ", -dφ/dh " << -slope << ", dp/dh "
+                  << potential.pressure(h).second << " (difference " << dp
+                  << ")\n";
         check.near(what + ": p = -dφ/dh", p, -slope, 1e-6 * (1. + std::abs(p)));
-        check.near(what + ": dp/dh", potential.pressure(h).second, dp,
+        check.near(what + ": dp/dh",
+                   potential.pressure(h).second,
+                   dp,
                    1e-5 * (1. + std::abs(dp)));
       }
   }
@@ -176,7 +187,10 @@ main(int argc, char *argv[])
   const MorsePotential     morse(0.3, 3.84, 0.49, 2.);
   check_potential(check, repulsion, "repulsion", {0.05, 0.15, 0.29});
   check_potential(check, morse, "Morse", {0.2, 0.49, 1.});
-  check.near("repulsion: p(Δ) [pN/µm²]", repulsion.pressure(0.3).first, 0., 1e-14);
+  check.near("repulsion: p(Δ) [pN/µm²]",
+             repulsion.pressure(0.3).first,
+             0.,
+             1e-14);
   check.near("Morse: p(r0) [pN/µm²]", morse.pressure(0.49).first, 0., 1e-14);
   {
     const double e = std::exp(3.84 * (0.49 - 2.));
@@ -188,49 +202,104 @@ main(int argc, char *argv[])
 
   // Repulsion and the wall: cells 0.15 µm apart, cell 0 0.1 µm from the wall.
   {
-    auto cells = two_cells(0.15, 0.1);
+    auto           cells = two_cells(0.15, 0.1);
     const CellGaps gaps =
       measure_gaps(cells->membranes(), cells->positions(), 5.)[0];
     std::cout << "placed: gap between the cells " << gaps.to_cells
               << " µm, wall gap " << gaps.to_wall << " µm\n";
-    check.near("measured gap between the cells [µm]", gaps.to_cells, 0.15, 1e-6);
+    check.near("measured gap between the cells [µm]",
+               gaps.to_cells,
+               0.15,
+               1e-6);
     check.near("measured wall gap [µm]", gaps.to_wall, 0.1, 1e-9);
 
-    add_interaction_forces(*cells, InteractionParameters(), 5.);
-    const auto [axial, largest] = axial_force_on_second(*cells);
+    add_interaction_forces(*cells, InteractionParameters(), 5., std::nullopt);
+    const auto [axial, largest]            = axial_force_on_second(*cells);
     const std::vector<Tensor<1, 3>> forces = cells->compute_forces();
-    const Tensor<1, 3> held = cells->held_force();
+    const Tensor<1, 3>              held   = cells->held_force();
     std::cout << "repulsion and wall: axial force on cell 1 " << axial
               << " pN, held (wall) force " << held << " pN, Σ F "
               << total(forces) << " pN\n";
     check.at_least("repulsion pushes cell 1 away along +x [pN]", axial, 1.);
     check.at_most("the wall pushes cell 0 to the axis: held force along y [pN]",
-                  held[1], -1.);
+                  held[1],
+                  -1.);
     check.at_most("Σ F = the wall's force, relative to max |F|",
-                  (total(forces) - held).norm() / largest, 1e-12);
+                  (total(forces) - held).norm() / largest,
+                  1e-12);
     check_gradient(check, *cells, "elasticity, repulsion, wall");
   }
 
   // Repulsion and aggregation, no wall: force and torque conserved.
   for (const double gap : {0.2, 0.8})
     {
-      auto cells = two_cells(gap, 1.);
+      auto                  cells = two_cells(gap, 1.);
       InteractionParameters parameters;
       parameters.aggregation = true;
-      add_interaction_forces(*cells, parameters, std::nullopt);
+      add_interaction_forces(*cells, parameters, std::nullopt, std::nullopt);
       const std::vector<Tensor<1, 3>> forces = cells->compute_forces();
-      const auto [axial, largest] = axial_force_on_second(*cells);
-      const Tensor<1, 3> moment = torque(cells->points(), forces);
-      std::cout << "gap " << gap << " µm, repulsion and aggregation: axial force on "
+      const auto [axial, largest]            = axial_force_on_second(*cells);
+      const Tensor<1, 3> moment              = torque(cells->points(), forces);
+      std::cout << "gap " << gap
+                << " µm, repulsion and aggregation: axial force on "
                 << "cell 1 " << axial << " pN, Σ F " << total(forces)
                 << " pN, Σ x × F " << moment << " pN µm\n";
-      check.at_most("internal forces: |Σ F| / max |F|", total(forces).norm() / largest, 1e-12);
+      check.at_most("internal forces: |Σ F| / max |F|",
+                    total(forces).norm() / largest,
+                    1e-12);
       check.at_most("internal forces: |Σ x × F| / (10 µm max |F|)",
-                    moment.norm() / (10. * largest), 1e-12);
+                    moment.norm() / (10. * largest),
+                    1e-12);
       if (gap > 0.49)
-        check.at_most("aggregation beyond r0 pulls cell 1 back [pN]", axial, -0.1);
+        check.at_most("aggregation beyond r0 pulls cell 1 back [pN]",
+                      axial,
+                      -0.1);
       check_gradient(check, *cells, "elasticity, repulsion, aggregation");
     }
+
+  // Across the ends of a periodic segment of 20 µm: cell 0 moved by a
+  // period, to x = 20, faces cell 1 at x ≈ 2.6 through the end.
+  {
+    const double          period = 20.;
+    InteractionParameters parameters;
+    parameters.aggregation = true;
+    auto inside            = two_cells(0.2, 1.);
+    auto across            = two_cells(0.2, 1.);
+    translate(*across, 0, Tensor<1, 3>({period, 0., 0.}));
+    add_interaction_forces(*inside, parameters, std::nullopt, std::nullopt);
+    add_interaction_forces(*across, parameters, std::nullopt, period);
+    const std::vector<Tensor<1, 3>> f_inside   = inside->compute_forces();
+    const std::vector<Tensor<1, 3>> f_across   = across->compute_forces();
+    double                          difference = 0., largest = 0.;
+    for (unsigned int i = 0; i < f_inside.size(); ++i)
+      {
+        difference = std::max(difference, (f_inside[i] - f_across[i]).norm());
+        largest    = std::max(largest, f_inside[i].norm());
+      }
+    const double gap_inside =
+      measure_gaps(inside->membranes(), inside->positions(), std::nullopt)[0]
+        .to_cells;
+    const double gap_across = measure_gaps(across->membranes(),
+                                           across->positions(),
+                                           std::nullopt,
+                                           period)[0]
+                                .to_cells;
+    std::cout << "across the periodic end: energy " << across->energy()
+              << " pN µm (inside " << inside->energy()
+              << "), largest force difference " << difference << " pN, gap "
+              << gap_across << " µm (inside " << gap_inside << ")\n";
+    check.at_most("periodic: forces across the end = inside, relative",
+                  difference / largest,
+                  1e-10);
+    check.near("periodic: energy across the end = inside [pN µm]",
+               across->energy(),
+               inside->energy(),
+               1e-10 * std::abs(inside->energy()));
+    check.near("periodic: gap across the end [µm]",
+               gap_across,
+               gap_inside,
+               1e-10);
+  }
 
   // Cell 1 pushed into cell 0: the gap turns negative.
   {

@@ -36,7 +36,7 @@ namespace
   {
     GeometryParameters geometry;
     geometry.periodic = true;
-    const double    R = geometry.capillary_radius, L = geometry.capillary_length;
+    const double R = geometry.capillary_radius, L = geometry.capillary_length;
     FluidParameters f;
     f.linear_tolerance = 1e-10;
     f.frame_velocity   = 300.;
@@ -54,18 +54,15 @@ namespace
                       std::cout,
                       TimerOutput::never,
                       TimerOutput::wall_times);
-    FluidProblem fluid(triangulation,
-                       f,
-                       FlowDrive::periodic_capillary(f, geometry),
-                       1.,
-                       timer);
+    FluidProblem fluid(
+      triangulation, f, FlowDrive::periodic_capillary(f, geometry), 1., timer);
     fluid.setup();
     const StepReport   report = fluid.advance();
     const FlowMeasures m      = fluid.measure();
 
     const PoiseuilleFlow exact(u, f.frame_velocity, f.viscosity, geometry);
     const ComponentSelectFunction<3> velocity_only(std::make_pair(0u, 3u), 4);
-    Vector<float> cellwise(triangulation.n_active_cells());
+    Vector<float>                    cellwise(triangulation.n_active_cells());
     VectorTools::integrate_difference(fluid.get_mapping(),
                                       fluid.get_dof_handler(),
                                       fluid.solution(),
@@ -82,18 +79,19 @@ namespace
                                                    cellwise,
                                                    VectorTools::L2_norm) /
                  scale;
-    e.flow_rate = std::abs(m.flow_rate - (u - f.frame_velocity) * area) /
-                  (u * area);
+    e.flow_rate =
+      std::abs(m.flow_rate - (u - f.frame_velocity) * area) / (u * area);
     e.pressure_drop =
       std::abs(m.pressure_drop / (8. * f.viscosity * u * L / (R * R)) - 1.);
     e.divergence = m.divergence_l2 / scale;
     if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-      std::cout << "  " << name << ", " << Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)
-              << " rank(s), " << fluid.get_dof_handler().n_dofs() << " DoFs, "
-              << report.linear_iterations
-              << " FGMRES iterations: velocity L2 " << e.velocity
-              << ", flow rate " << e.flow_rate << ", pressure drop "
-              << e.pressure_drop << ", ‖∇·v‖/‖v‖ " << e.divergence << '\n';
+      std::cout << "  " << name << ", "
+                << Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)
+                << " rank(s), " << fluid.get_dof_handler().n_dofs() << " DoFs, "
+                << report.linear_iterations
+                << " FGMRES iterations: velocity L2 " << e.velocity
+                << ", flow rate " << e.flow_rate << ", pressure drop "
+                << e.pressure_drop << ", ‖∇·v‖/‖v‖ " << e.divergence << '\n';
     return e;
   }
 } // namespace

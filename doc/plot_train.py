@@ -1,0 +1,68 @@
+#!/usr/bin/env python3
+"""Plot a train of cells flowing in a periodic capillary (prm/periodic_train.prm).
+
+    /usr/bin/python3 doc/plot_train.py OUTPUT_DIRECTORY PICTURE.png
+
+Three panels against time: (a) DM of the segment and DM per cell from
+dm.csv; (b) the deformation index of every cell from cells.csv; (c) the
+smallest gap between cells (min_gap) and to the wall (wall_gap). Needs
+python3-matplotlib (`scripts/install-packages.sh --docs`).
+"""
+import csv
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+
+
+def read(path):
+    """The rows of a CSV file as dicts of floats, empty fields left out."""
+    with open(path) as f:
+        return [{k: float(v) for k, v in row.items() if v != ""}
+                for row in csv.DictReader(f)]
+
+
+def main(directory, picture):
+    dm = read(directory + "/dm.csv")
+    rows = read(directory + "/cells.csv")
+    cells = sorted({int(r["cell"]) for r in rows})
+    figure, (uptake, shape, gaps) = plt.subplots(1, 3, figsize=(14, 3.8),
+                                                 layout="constrained")
+
+    t_dm = [1e3 * r["time"] for r in dm]
+    uptake.plot(t_dm, [r["dm_total"] for r in dm], "o-", color="black", label="segment")
+    for c in cells:
+        uptake.plot(t_dm, [r[f"dm_cell_{c}"] for r in dm], ".--", label=f"cell {c}")
+    uptake.set_ylabel("DM [µm³ s⁻¹ Torr⁻¹]")
+    uptake.set_yscale("log")
+    uptake.legend(fontsize=7, ncol=2)
+    uptake.set_title("(a) diffusing capacity")
+
+    for c in cells:
+        mine = [r for r in rows if r["cell"] == c]
+        shape.plot([1e3 * r["time"] for r in mine],
+                   [r["deformation_index"] for r in mine], "o-", label=f"cell {c}")
+    shape.set_ylabel("deformation index (L − D)/(L + D)")
+    shape.legend(fontsize=7)
+    shape.set_title("(b) shapes")
+
+    times = sorted({r["time"] for r in rows})
+    smallest = [min(r["min_gap"] for r in rows if r["time"] == t) for t in times]
+    wall = [min(r["wall_gap"] for r in rows if r["time"] == t) for t in times]
+    gaps.plot([1e3 * t for t in times], smallest, "o-", label="between cells")
+    gaps.plot([1e3 * t for t in times], wall, "s-", label="to the wall")
+    gaps.set_ylabel("smallest gap [µm]")
+    gaps.legend(fontsize=8)
+    gaps.set_title("(c) gaps")
+    for axes in (uptake, shape, gaps):
+        axes.set_xlabel("time [ms]")
+        axes.grid(alpha=0.3)
+    figure.savefig(picture, dpi=150)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    main(sys.argv[1], sys.argv[2])

@@ -33,11 +33,13 @@ def main(directory, picture):
 
     t_dm = [1e3 * r["time"] for r in dm]
     uptake.plot(t_dm, [r["dm_total"] for r in dm], "o-", color="black", label="segment")
+    uptake.set_ylabel("DM of the segment [µm³ s⁻¹ Torr⁻¹]")
+    per_cell = uptake.twinx()
     for c in cells:
-        uptake.plot(t_dm, [r[f"dm_cell_{c}"] for r in dm], ".--", label=f"cell {c}")
-    uptake.set_ylabel("DM [µm³ s⁻¹ Torr⁻¹]")
-    uptake.set_yscale("log")
-    uptake.legend(fontsize=7, ncol=2)
+        per_cell.plot(t_dm, [r[f"dm_cell_{c}"] for r in dm], ".--", label=f"cell {c}")
+    per_cell.set_ylabel("DM per cell [µm³ s⁻¹ Torr⁻¹]")
+    lines = uptake.get_lines() + per_cell.get_lines()
+    uptake.legend(lines, [line.get_label() for line in lines], fontsize=7, ncol=2)
     uptake.set_title("(a) diffusing capacity")
 
     for c in cells:

@@ -14,7 +14,12 @@
 // - measure_gaps() gives the gap the cells were placed at, and a negative
 //   gap once a cell is pushed into the other;
 // - in a periodic segment, the same pair with one cell moved by a period to
-//   the far end feels the same forces and has the same gap across the ends.
+//   the far end feels the same forces and has the same gap across the ends;
+// - two spheres of radius R ≫ 1/β attracted by the Morse potential alone
+//   are at rest where the Derjaguin approximation puts them: the force
+//   between spheres is F(h) = π R φ(h), zero where φ(h) = 0, at the gap
+//   h* = r0 - ln 2/β (0.3095 µm; flat membranes rest at r0). The pair
+//   density reproduces it as the membrane mesh is refined.
 
 #include <rbc_ifem/coupling/cell_population.h>
 #include <rbc_ifem/coupling/contact_forces.h>
@@ -53,13 +58,15 @@ namespace
   /// Two cells facing each other along x, @p gap apart at their rims, the
   /// first a distance @p wall_gap from a wall of radius 5 µm.
   std::unique_ptr<CellPopulation>
-  two_cells(const double gap, const double wall_gap)
+  two_cells(const double          gap,
+            const double          wall_gap,
+            const CellParameters &shape = coarse_cells())
   {
     const Tensor<1, 3> axis({1., 0., 0.});
     auto               cells = std::make_unique<CellPopulation>(
       std::vector<CellPlacement>{{Point<3>(0., 0., 0.), axis},
                                                {Point<3>(10., 0., 0.), axis}},
-      coarse_cells(),
+      shape,
       MembraneParameters());
     // The gap is measured from the tangent planes of the nearest points,
     // which change as the cells close in: a few corrections find it.
@@ -299,6 +306,49 @@ main(int argc, char *argv[])
                gap_across,
                gap_inside,
                1e-10);
+  }
+
+  // The rest gap of two spheres under the Morse attraction alone.
+  {
+    const double          r0 = 0.49, beta = 3.84;
+    const double          derjaguin = r0 - std::log(2.) / beta;
+    InteractionParameters morse_only;
+    morse_only.repulsion_pressure = 0.;
+    morse_only.aggregation        = true;
+    std::cout << "two spheres of R = 3.75 µm, Morse only: rest gap (Derjaguin "
+              << derjaguin << " µm)\n";
+    std::vector<double> rest_gaps;
+    for (const unsigned int refinements : {3u, 4u, 5u})
+      {
+        CellParameters spheres;
+        spheres.shape               = ReferenceShape::sphere;
+        spheres.surface_refinements = refinements;
+        // The axial force on cell 1: positive (apart) below the rest gap.
+        const auto force_at = [&](const double gap) {
+          auto cells = two_cells(gap, 1., spheres);
+          add_interaction_forces(*cells,
+                                 morse_only,
+                                 std::nullopt,
+                                 std::nullopt);
+          return axial_force_on_second(*cells).first;
+        };
+        double low = 0.2, high = 0.45;
+        for (unsigned int step = 0; step < 20; ++step)
+          (force_at(0.5 * (low + high)) > 0. ? low : high) = 0.5 * (low + high);
+        rest_gaps.push_back(0.5 * (low + high));
+        std::cout << "  surface refinements " << refinements << ": "
+                  << rest_gaps.back() << " µm\n";
+      }
+    // The discrete sum approaches the continuum as the point spacing falls
+    // below 1/β = 0.26 µm (0.41, 0.32, 0.31 µm at 3, 4, 5 refinements);
+    // Derjaguin's own error is O(h/R), a few per cent of h.
+    check.near("Morse rest gap of two spheres, finest membrane [µm]",
+               rest_gaps.back(),
+               derjaguin,
+               0.03 * derjaguin);
+    check.at_most("Morse rest gap: finer membranes come closer to Derjaguin",
+                  std::abs(rest_gaps[2] - derjaguin),
+                  0.1 * std::abs(rest_gaps[0] - derjaguin));
   }
 
   // Cell 1 pushed into cell 0: the gap turns negative.

@@ -72,6 +72,8 @@ namespace rbc_ifem
   FlowDrive::capillary(const FluidParameters    &fluid,
                        const GeometryParameters &geometry)
   {
+    if (geometry.periodic)
+      return periodic_capillary(fluid, geometry);
     FlowDrive drive;
     drive.dirichlet[FluidBoundary::wall] =
       std::make_shared<Functions::ZeroFunction<3>>(4);

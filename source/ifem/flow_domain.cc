@@ -37,11 +37,8 @@ namespace rbc_ifem
   FlowDomain::capillary(const Parameters &parameters)
   {
     FlowDomain domain;
-    domain.name = "the capillary";
-    domain.drive =
-      parameters.geometry.periodic ?
-        FlowDrive::periodic_capillary(parameters.fluid, parameters.geometry) :
-        FlowDrive::capillary(parameters.fluid, parameters.geometry);
+    domain.name   = "the capillary";
+    domain.drive  = FlowDrive::capillary(parameters.fluid, parameters.geometry);
     domain.period = parameters.geometry.period();
     domain.placements =
       CellLayout(parameters.layout, parameters.geometry, parameters.cells)

@@ -81,8 +81,8 @@ namespace rbc_ifem
     /// -dp/dx that drives a periodic segment.
     double pressure_gradient = 0.;
 
-    /// The capillary: no slip on the wall, Poiseuille of mean speed ū at the
-    /// inlet.
+    /// The capillary of @p geometry: no slip on the wall, Poiseuille of mean
+    /// speed ū at the inlet; with Geometry/Periodic, periodic_capillary().
     static FlowDrive
     capillary(const FluidParameters &fluid, const GeometryParameters &geometry);
     /**

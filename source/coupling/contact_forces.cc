@@ -2,6 +2,7 @@
 #include <rbc_ifem/coupling/contact_forces.h>
 #include <rbc_ifem/coupling/point_bins.h>
 #include <rbc_ifem/geometry/capillary_mesh.h>
+#include <rbc_ifem/membrane/membrane_equilibrium.h>
 
 #include <cmath>
 #include <limits>
@@ -198,31 +199,81 @@ namespace rbc_ifem
     CellForceReport report;
     for (unsigned int c = 0; c < membranes.size(); ++c)
       {
-        const auto &nodes = membranes[c]->nodes();
-        for (unsigned int n = 0; n < nodes.size(); ++n)
-          {
-            const Point<3> p    = node_position(x[c], nodes[n]);
-            const double   rho  = std::hypot(p[1], p[2]);
-            const double   gap  = radius - rho;
-            const double   area = reference_areas[c][n];
-            if (gap >= potential.cutoff())
-              continue;
-            if (gap <= 0.)
-              {
-                report.energy = std::numeric_limits<double>::infinity();
-                continue;
-              }
-            report.energy += area * potential.energy(gap);
-            // F = -a φ'(d) ∂d/∂x = a p(d) ∂d/∂x, with ∂d/∂x = -(0, y, z)/ρ.
-            const double pressure = potential.pressure(gap).first;
-            Tensor<1, 3> force;
-            force[1] = -area * pressure * p[1] / rho;
-            force[2] = -area * pressure * p[2] / rho;
-            add_node_force(forces[c], nodes[n], force);
-            report.external_force += force;
-          }
+        const CellForceReport cell =
+          add_cell_forces(c, radius, x[c], forces[c]);
+        report.energy += cell.energy;
+        report.external_force += cell.external_force;
       }
     return report;
+  }
+
+  CellForceReport
+  WallRepulsion::add_cell_forces(const unsigned int    c,
+                                 const double          wall_radius,
+                                 const Vector<double> &x,
+                                 Vector<double>       &forces) const
+  {
+    CellForceReport report;
+    const auto     &nodes = membranes[c]->nodes();
+    for (unsigned int n = 0; n < nodes.size(); ++n)
+      {
+        const Point<3> p    = node_position(x, nodes[n]);
+        const double   rho  = std::hypot(p[1], p[2]);
+        const double   gap  = wall_radius - rho;
+        const double   area = reference_areas[c][n];
+        if (gap >= potential.cutoff())
+          continue;
+        if (gap <= 0.)
+          {
+            report.energy = std::numeric_limits<double>::infinity();
+            continue;
+          }
+        report.energy += area * potential.energy(gap);
+        // F = -a φ'(d) ∂d/∂x = a p(d) ∂d/∂x, with ∂d/∂x = -(0, y, z)/ρ.
+        const double pressure = potential.pressure(gap).first;
+        Tensor<1, 3> force;
+        force[1] = -area * pressure * p[1] / rho;
+        force[2] = -area * pressure * p[2] / rho;
+        add_node_force(forces, nodes[n], force);
+        report.external_force += force;
+      }
+    return report;
+  }
+
+  unsigned int
+  WallRepulsion::squeeze_into_lumen(std::vector<Vector<double>> &x) const
+  {
+    unsigned int stages = 0;
+    for (unsigned int c = 0; c < membranes.size(); ++c)
+      {
+        const auto widest = [&]() {
+          double rho = 0.;
+          for (const auto &dofs : membranes[c]->nodes())
+            rho = std::max(rho, std::hypot(x[c][dofs[1]], x[c][dofs[2]]));
+          return rho;
+        };
+        // The wall starts just outside the cell and closes in on it by half
+        // the smallest gap at a time, each time to the membrane's static
+        // equilibrium against it, until it stands at the capillary's.
+        double wall = std::max(radius, widest() + 0.5 * potential.cutoff());
+        while (wall > radius)
+          {
+            wall = std::max(radius, wall - 0.5 * (wall - widest()));
+            if (wall - radius < 1e-3 * potential.cutoff())
+              wall = radius;
+            find_equilibrium(
+              *membranes[c],
+              [&, wall](const Vector<double> &positions,
+                        Vector<double>       &forces) {
+                return add_cell_forces(c, wall, positions, forces).energy;
+              },
+              x[c],
+              /*tolerance [pN]=*/1e-2,
+              /*max_iterations=*/5000);
+            ++stages;
+          }
+      }
+    return stages;
   }
 
   PushingForce::PushingForce(

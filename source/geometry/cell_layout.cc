@@ -32,7 +32,9 @@ namespace rbc_ifem
                        to_text(cell_parameters.diameter),
                        "the cell must be smaller than the capillary diameter "
                        "2 x Geometry/Capillary radius = " +
-                         to_text(2. * geometry.capillary_radius) + " µm.");
+                         to_text(2. * geometry.capillary_radius) +
+                         " µm (a flowing run can squeeze a wider cell in: "
+                         "Immersed cells/Squeeze into lumen).");
     const EvansFungShape shape = EvansFungShape::of(cell_parameters);
     const CellPlacement  reference{Point<3>(), axis};
     const Tensor<1, 3>   e_x{{1., 0., 0.}};

@@ -40,8 +40,15 @@ namespace rbc_ifem
     domain.name   = "the capillary";
     domain.drive  = FlowDrive::capillary(parameters.fluid, parameters.geometry);
     domain.period = parameters.geometry.period();
+    // Cells squeezed into the lumen are placed along the axis as if it were
+    // wide enough; IFEMSimulation then squeezes them.
+    GeometryParameters layout_geometry = parameters.geometry;
+    if (parameters.immersed.squeeze_into_lumen)
+      layout_geometry.capillary_radius =
+        std::max(layout_geometry.capillary_radius,
+                 0.5 * parameters.cells.diameter + 1.);
     domain.placements =
-      CellLayout(parameters.layout, parameters.geometry, parameters.cells)
+      CellLayout(parameters.layout, layout_geometry, parameters.cells)
         .placements();
     domain.create_mesh = [geometry = parameters.geometry,
                           refinements =

@@ -93,6 +93,14 @@ namespace rbc_ifem
                            domain.wall_radius,
                            domain.period);
     contacts = cells.size() > 1 || domain.wall_radius.has_value();
+    if (immersed.squeeze_into_lumen)
+      {
+        if (!domain.wall_radius || parameters.interactions.wall_pressure <= 0.)
+          throw InputError("Immersed cells/Squeeze into lumen",
+                           "true",
+                           "cells squeezed into the capillary need its wall "
+                           "repulsion: Cell interactions/Wall pressure > 0.");
+      }
 
     record.flow.set_header(
       "time,flow_rate,pressure_drop,max_velocity,divergence_l2,"
@@ -115,6 +123,20 @@ namespace rbc_ifem
   void
   IFEMSimulation::setup()
   {
+    if (parameters.immersed.squeeze_into_lumen)
+      {
+        TimerOutput::Scope  scope(timer, "squeeze into lumen");
+        const WallRepulsion wall(
+          cells.membranes(),
+          *domain.wall_radius,
+          RepulsivePotential(parameters.interactions.wall_pressure,
+                             parameters.interactions.wall_range));
+        std::vector<Vector<double>> x = cells.positions();
+        squeeze_stages                = wall.squeeze_into_lumen(x);
+        cells.set_positions(x);
+        pcout << "  squeezed into the lumen in " << squeeze_stages << " stages"
+              << std::endl;
+      }
     {
       TimerOutput::Scope scope(timer, "fluid mesh");
       domain.create_mesh(triangulation);

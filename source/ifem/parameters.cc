@@ -102,6 +102,18 @@ namespace rbc_ifem
                   "doc/validation.md). Needs Follow cells = false.",
                   Patterns::Double(0.));
     add_parameter(prm,
+                  "Squeeze into lumen",
+                  squeeze_into_lumen,
+                  "true lets the cells be wider than the capillary (Cells/"
+                  "Diameter up to and beyond twice Geometry/Capillary "
+                  "radius): before the run, the wall closes in on each cell "
+                  "in stages, the membrane relaxed to its static "
+                  "equilibrium against it at each, so the cell starts "
+                  "squeezed into the lumen with its stress-free reference "
+                  "shape unchanged, and the wall repulsion keeps it there "
+                  "while it flows. Needs Cell interactions/Wall pressure "
+                  "> 0.");
+    add_parameter(prm,
                   "Pushing forces",
                   pushing_forces,
                   "A constant force on each cell [pN], 'Fx, Fy, Fz' per "

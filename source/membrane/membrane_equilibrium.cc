@@ -9,18 +9,18 @@ namespace rbc_ifem
 {
   namespace
   {
-    /// Π(x) = E(x) - f·x, and its gradient -(F(x) + f).
+    /// Π(x) = E(x) + U(x), and its gradient -(F(x) + F_U(x)).
     double
-    potential(const Membrane       &membrane,
-              const Vector<double> &f,
-              const Vector<double> &x,
-              Vector<double>       &gradient,
-              MembraneEnergy       &energy)
+    potential(const Membrane          &membrane,
+              const ExternalPotential &external,
+              const Vector<double>    &x,
+              Vector<double>          &gradient,
+              MembraneEnergy          &energy)
     {
-      energy = membrane.energy_and_forces(x, gradient);
-      gradient += f;
+      energy         = membrane.energy_and_forces(x, gradient);
+      const double u = external(x, gradient);
       gradient *= -1.;
-      return energy.total() - f * x;
+      return energy.total() + u;
     }
 
     /// The largest |g| over the nodes (x, y, z of a node together).
@@ -74,16 +74,16 @@ namespace rbc_ifem
      * halved like any other. Returns false if 40 halvings found no step.
      */
     bool
-    line_search(const Membrane       &membrane,
-                const Vector<double> &f,
-                const Vector<double> &x,
-                const double          pi,
-                const Vector<double> &g,
-                const Vector<double> &d,
-                Vector<double>       &trial,
-                double               &pi_trial,
-                Vector<double>       &g_trial,
-                MembraneEnergy       &energy)
+    line_search(const Membrane          &membrane,
+                const ExternalPotential &f,
+                const Vector<double>    &x,
+                const double             pi,
+                const Vector<double>    &g,
+                const Vector<double>    &d,
+                Vector<double>          &trial,
+                double                  &pi_trial,
+                Vector<double>          &g_trial,
+                MembraneEnergy          &energy)
     {
       const double slope = g * d;
       double       step  = 1.;
@@ -105,10 +105,29 @@ namespace rbc_ifem
 
   EquilibriumReport
   find_equilibrium(const Membrane       &membrane,
-                   const Vector<double> &f,
+                   const Vector<double> &external_forces,
                    Vector<double>       &x,
                    const double          tolerance,
                    const unsigned int    max_iterations)
+  {
+    // Fixed forces f: U(x) = -f·x.
+    return find_equilibrium(
+      membrane,
+      [&external_forces](const Vector<double> &x, Vector<double> &forces) {
+        forces += external_forces;
+        return -(external_forces * x);
+      },
+      x,
+      tolerance,
+      max_iterations);
+  }
+
+  EquilibriumReport
+  find_equilibrium(const Membrane          &membrane,
+                   const ExternalPotential &f,
+                   Vector<double>          &x,
+                   const double             tolerance,
+                   const unsigned int       max_iterations)
   {
     constexpr unsigned int memory = 20;
     EquilibriumReport      report;

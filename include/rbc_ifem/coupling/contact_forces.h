@@ -143,7 +143,25 @@ namespace rbc_ifem
     add_forces(const std::vector<Vector<double>> &positions,
                std::vector<Vector<double>>       &forces) const override;
 
+    /**
+     * Bring every cell wider than the lumen into it: a wall that starts
+     * just outside the cell closes in, by half the smallest gap at a time,
+     * to the capillary's radius, and at each stage the membrane (its
+     * reference shape unchanged) is relaxed to its static equilibrium
+     * against it (find_equilibrium()). @p x, one Vector per cell, is
+     * replaced by the squeezed positions. Returns the number of stages.
+     */
+    unsigned int
+    squeeze_into_lumen(std::vector<Vector<double>> &x) const;
+
   private:
+    /// The energy and force of a wall of radius @p wall_radius on cell @p c.
+    CellForceReport
+    add_cell_forces(const unsigned int    c,
+                    const double          wall_radius,
+                    const Vector<double> &x,
+                    Vector<double>       &forces) const;
+
     const std::vector<std::unique_ptr<Membrane>> &membranes;
     const double                                  radius;
     const RepulsivePotential                      potential;

@@ -121,8 +121,10 @@ namespace rbc_ifem
     std::vector<RunObserver *>         observers;
     RunRecord                          record;
     /// Whether anything can touch: several cells, or a wall.
-    bool   contacts  = false;
-    double mesh_size = 0.;                   ///< fluid h at the membranes [µm]
+    bool contacts = false;
+    /// With Squeeze into lumen, the stages it took.
+    unsigned int squeeze_stages = 0;
+    double       mesh_size      = 0.;        ///< fluid h at the membranes [µm]
     TrilinosWrappers::MPI::BlockVector load; ///< the spread forces, owned
   };
 } // namespace rbc_ifem

@@ -44,6 +44,8 @@ namespace rbc_ifem
     unsigned int progress_interval =
       10;                         ///< a progress line every this many steps
     double tether_stiffness = 0.; ///< springs to the start [pN/µm]; 0: free
+    /// Let a cell wider than the lumen start squeezed into it.
+    bool squeeze_into_lumen = false;
     /// A constant force on each cell, "Fx, Fy, Fz; ..." [pN]; empty: none.
     std::string pushing_forces;
 

@@ -5,6 +5,8 @@
 
 #include <deal.II/lac/vector.h>
 
+#include <functional>
+
 namespace rbc_ifem
 {
   using namespace dealii;
@@ -32,6 +34,25 @@ namespace rbc_ifem
                    Vector<double>       &x,
                    const double          tolerance,
                    const unsigned int    max_iterations);
+
+  /**
+   * An external potential U(x) of the membrane's positions: returns U and
+   * adds its forces -∂U/∂x to the second argument (one entry per DoF).
+   */
+  using ExternalPotential =
+    std::function<double(const Vector<double> &, Vector<double> &)>;
+
+  /**
+   * The same for forces that depend on the positions: the minimum of
+   * Π(x) = E(x) + U(x). A U that is infinite where x is not allowed (a
+   * wall) is respected: such steps are halved.
+   */
+  EquilibriumReport
+  find_equilibrium(const Membrane          &membrane,
+                   const ExternalPotential &external,
+                   Vector<double>          &x,
+                   const double             tolerance,
+                   const unsigned int       max_iterations);
 } // namespace rbc_ifem
 
 #endif

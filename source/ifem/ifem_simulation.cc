@@ -72,6 +72,24 @@ namespace rbc_ifem
             timer)
     , cells(domain.placements, parameters.cells, parameters.membrane)
   {
+    add_cell_forces();
+    contacts = cells.size() > 1 || domain.wall_radius.has_value();
+
+    record.flow.set_header(
+      "time,flow_rate,pressure_drop,max_velocity,divergence_l2,"
+      "frame_velocity,newton_iterations,linear_iterations,held_force_x,"
+      "held_force_y,held_force_z");
+    record.cells.set_header(
+      "time,cell,x,y,z,area,volume,axial_length,max_radius,deformation_index,"
+      "frame_x,volume_change,area_change,taylor_deformation,inclination,"
+      "min_gap,wall_gap");
+    record.dm.set_header(dm_header(cells.size()));
+    record.cell_files.resize(cells.size());
+  }
+
+  void
+  IFEMSimulation::add_cell_forces()
+  {
     const ImmersedParameters &immersed = parameters.immersed;
     if (immersed.tether_stiffness > 0.)
       cells.add_force(
@@ -92,7 +110,6 @@ namespace rbc_ifem
                            parameters.interactions,
                            domain.wall_radius,
                            domain.period);
-    contacts = cells.size() > 1 || domain.wall_radius.has_value();
     if (immersed.squeeze_into_lumen)
       {
         if (!domain.wall_radius || parameters.interactions.wall_pressure <= 0.)
@@ -101,17 +118,6 @@ namespace rbc_ifem
                            "cells squeezed into the capillary need its wall "
                            "repulsion: Cell interactions/Wall pressure > 0.");
       }
-
-    record.flow.set_header(
-      "time,flow_rate,pressure_drop,max_velocity,divergence_l2,"
-      "frame_velocity,newton_iterations,linear_iterations,held_force_x,"
-      "held_force_y,held_force_z");
-    record.cells.set_header(
-      "time,cell,x,y,z,area,volume,axial_length,max_radius,deformation_index,"
-      "frame_x,volume_change,area_change,taylor_deformation,inclination,"
-      "min_gap,wall_gap");
-    record.dm.set_header(dm_header(cells.size()));
-    record.cell_files.resize(cells.size());
   }
 
   void
@@ -131,10 +137,10 @@ namespace rbc_ifem
           *domain.wall_radius,
           RepulsivePotential(parameters.interactions.wall_pressure,
                              parameters.interactions.wall_range));
-        std::vector<Vector<double>> x = cells.positions();
-        squeeze_stages                = wall.squeeze_into_lumen(x);
+        std::vector<Vector<double>> x      = cells.positions();
+        const unsigned int          stages = wall.squeeze_into_lumen(x);
         cells.set_positions(x);
-        pcout << "  squeezed into the lumen in " << squeeze_stages << " stages"
+        pcout << "  squeezed into the lumen in " << stages << " stages"
               << std::endl;
       }
     {

@@ -78,6 +78,14 @@ namespace rbc_ifem
     run();
 
   private:
+    /**
+     * The cell forces of the run besides the membranes' elasticity: the
+     * tether, the pushing forces and the contact forces of Cell
+     * interactions; throws InputError for pushing forces that do not match
+     * the cells, or a squeeze without the wall.
+     */
+    void
+    add_cell_forces();
     /// The dimensionless numbers and stability estimates of the run.
     void
     report_startup() const;
@@ -121,10 +129,8 @@ namespace rbc_ifem
     std::vector<RunObserver *>         observers;
     RunRecord                          record;
     /// Whether anything can touch: several cells, or a wall.
-    bool contacts = false;
-    /// With Squeeze into lumen, the stages it took.
-    unsigned int squeeze_stages = 0;
-    double       mesh_size      = 0.;        ///< fluid h at the membranes [µm]
+    bool   contacts  = false;
+    double mesh_size = 0.;                   ///< fluid h at the membranes [µm]
     TrilinosWrappers::MPI::BlockVector load; ///< the spread forces, owned
   };
 } // namespace rbc_ifem

@@ -8,7 +8,6 @@ membranes (min_gap) with the repulsion range of the run's parameters.prm;
 (b) the deformation index of each cell. Needs python3-matplotlib
 (`scripts/install-packages.sh --docs`).
 """
-import csv
 import re
 import sys
 
@@ -16,13 +15,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
-
-
-def read(path):
-    """The rows of a CSV file as dicts of floats, empty fields left out."""
-    with open(path) as f:
-        return [{k: float(v) for k, v in row.items() if v != ""}
-                for row in csv.DictReader(f)]
+from tables import read
 
 
 def parameter(directory, name):

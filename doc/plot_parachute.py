@@ -10,22 +10,13 @@ left axis and its deformation index on the right; (c) the change of its
 volume and area from the reference cell. Needs python3-matplotlib
 (`scripts/install-packages.sh --docs`).
 """
-import csv
 import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
-
-
-def read(path, cell=None):
-    """The rows of a CSV file as dicts of floats, only those of CELL if given."""
-    with open(path) as f:
-        # Empty fields (min_gap of a lone cell) are left out.
-        rows = [{k: float(v) for k, v in row.items() if v != ""}
-                for row in csv.DictReader(f)]
-    return [r for r in rows if cell is None or r["cell"] == cell]
+from tables import read
 
 
 def column(rows, name, scale=1.0):

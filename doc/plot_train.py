@@ -8,20 +8,13 @@ dm.csv; (b) the deformation index of every cell from cells.csv; (c) the
 smallest gap between cells (min_gap) and to the wall (wall_gap). Needs
 python3-matplotlib (`scripts/install-packages.sh --docs`).
 """
-import csv
 import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
-
-
-def read(path):
-    """The rows of a CSV file as dicts of floats, empty fields left out."""
-    with open(path) as f:
-        return [{k: float(v) for k, v in row.items() if v != ""}
-                for row in csv.DictReader(f)]
+from tables import read
 
 
 def main(directory, picture):

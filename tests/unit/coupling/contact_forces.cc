@@ -26,10 +26,10 @@
 #include <rbc_ifem/coupling/contact_gaps.h>
 
 #include "check.h"
+#include "gradient_check.h"
 
 #include <deal.II/base/mpi.h>
 
-#include <random>
 
 using namespace rbc_ifem;
 
@@ -114,45 +114,6 @@ namespace
           axial += forces[i][0];
       }
     return {axial, largest};
-  }
-
-  void
-  check_gradient(Checker &check, CellPopulation &cells, const std::string &what)
-  {
-    std::mt19937                           random(7);
-    std::uniform_real_distribution<double> uniform(-1., 1.);
-    const std::vector<Vector<double>>      x = cells.positions();
-    std::vector<Vector<double>>            v = x;
-    for (Vector<double> &cell : v)
-      for (double &entry : cell)
-        entry = uniform(random);
-    const std::vector<Tensor<1, 3>> forces      = cells.compute_forces();
-    double                          directional = 0.;
-    unsigned int                    point       = 0;
-    for (unsigned int c = 0; c < cells.size(); ++c)
-      for (const auto &dofs : cells.membranes()[c]->nodes())
-        {
-          for (unsigned int d = 0; d < 3; ++d)
-            directional -= forces[point][d] * v[c][dofs[d]];
-          ++point;
-        }
-    const double h         = 1e-6;
-    const auto   energy_at = [&](const double s) {
-      std::vector<Vector<double>> moved = x;
-      for (unsigned int c = 0; c < x.size(); ++c)
-        moved[c].add(s, v[c]);
-      cells.set_positions(moved);
-      cells.compute_forces();
-      return cells.energy();
-    };
-    const double difference = (energy_at(h) - energy_at(-h)) / (2. * h);
-    cells.set_positions(x);
-    std::cout << "  " << what << ": dE/ds " << difference << ", -F·v "
-              << directional << '\n';
-    check.near(what + ": -F·v against the central difference of E, relative",
-               directional / difference,
-               1.,
-               1e-6);
   }
 
   void

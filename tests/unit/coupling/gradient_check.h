@@ -1,0 +1,65 @@
+#ifndef rbc_ifem_tests_unit_coupling_gradient_check_h
+#define rbc_ifem_tests_unit_coupling_gradient_check_h
+
+#include <rbc_ifem/coupling/cell_population.h>
+
+#include "check.h"
+
+#include <iostream>
+#include <random>
+#include <string>
+#include <vector>
+
+/**
+ * Check that the forces of @p cells are the exact negative gradient of
+ * their energy: along a random direction v, the central difference of E
+ * equals -F·v to a relative 1e-6. The cells are left at their positions,
+ * with their forces computed there.
+ */
+inline void
+check_gradient(Checker                  &check,
+               rbc_ifem::CellPopulation &cells,
+               const std::string        &what)
+{
+  using namespace dealii;
+  std::mt19937                           random(7);
+  std::uniform_real_distribution<double> uniform(-1., 1.);
+  const std::vector<Vector<double>>      x = cells.positions();
+  std::vector<Vector<double>>            v = x;
+  for (Vector<double> &cell : v)
+    for (double &entry : cell)
+      entry = uniform(random);
+
+  // -F·v, point by point in the population's order.
+  const std::vector<Tensor<1, 3>> forces      = cells.compute_forces();
+  double                          directional = 0.;
+  unsigned int                    point       = 0;
+  for (unsigned int c = 0; c < cells.size(); ++c)
+    for (const auto &dofs : cells.membranes()[c]->nodes())
+      {
+        for (unsigned int d = 0; d < 3; ++d)
+          directional -= forces[point][d] * v[c][dofs[d]];
+        ++point;
+      }
+
+  const double h         = 1e-6;
+  const auto   energy_at = [&](const double s) {
+    std::vector<Vector<double>> moved = x;
+    for (unsigned int c = 0; c < x.size(); ++c)
+      moved[c].add(s, v[c]);
+    cells.set_positions(moved);
+    cells.compute_forces();
+    return cells.energy();
+  };
+  const double difference = (energy_at(h) - energy_at(-h)) / (2. * h);
+  cells.set_positions(x);
+  cells.compute_forces();
+  std::cout << "  " << what << ": dE/ds " << difference << ", -F·v "
+            << directional << '\n';
+  check.near(what + ": -F·v against the central difference of E, relative",
+             directional / difference,
+             1.,
+             1e-6);
+}
+
+#endif

@@ -18,6 +18,7 @@ namespace rbc_ifem
     mesh.add_parameters(prm);
     cells.add_parameters(prm);
     layout.add_parameters(prm);
+    layout_study.add_parameters(prm);
     fluid.add_parameters(prm);
     time.add_parameters(prm);
     membrane.add_parameters(prm);
@@ -39,6 +40,7 @@ namespace rbc_ifem
     geometry.validate();
     cells.validate();
     layout.validate();
+    layout_study.validate();
     fluid.validate();
     time.validate();
     membrane.validate();

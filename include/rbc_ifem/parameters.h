@@ -31,6 +31,7 @@ namespace rbc_ifem
     MeshParameters        mesh;
     CellParameters        cells;
     LayoutParameters      layout;
+    LayoutStudyParameters layout_study;
     FluidParameters       fluid;
     TimeParameters        time;
     MembraneParameters    membrane;

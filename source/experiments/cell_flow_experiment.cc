@@ -17,7 +17,8 @@ namespace rbc_ifem
   void
   CellFlowExperiment::setup()
   {
-    if (parameters.layout.n_cells == 0)
+    if (parameters.layout.kind != LayoutKind::file &&
+        parameters.layout.n_cells == 0)
       throw InputError("Layout/Number of cells",
                        "0",
                        "a flow with Immersed cells/Enabled = true needs at "

@@ -4,6 +4,7 @@
 #include <rbc_ifem/experiments/cell_flow_experiment.h>
 #include <rbc_ifem/experiments/diffusion_experiment.h>
 #include <rbc_ifem/experiments/flow_experiment.h>
+#include <rbc_ifem/experiments/flowing_layouts_experiment.h>
 #include <rbc_ifem/experiments/geometry_experiment.h>
 #include <rbc_ifem/experiments/layouts_experiment.h>
 #include <rbc_ifem/experiments/mesh_convergence_experiment.h>
@@ -96,7 +97,7 @@ namespace rbc_ifem
         "diffusion",
         "steady CO uptake of the layout (dm.csv, VTU of P and of the "
         "membrane flux)."),
-      entry_with<LayoutsExperiment, LayoutStudyParameters>(
+      entry<LayoutsExperiment>(
         "layouts",
         "DM for every kind and number of cells of subsection Layout study "
         "(layouts.csv)."),
@@ -109,6 +110,12 @@ namespace rbc_ifem
        "Immersed cells/Enabled (cells.csv, dm.csv, VTU of the membranes).",
        nullptr,
        create_flow},
+      entry_with<FlowingLayoutsExperiment, FlowingLayoutsParameters>(
+        "flowing layouts",
+        "every layout of subsection Layout study carried by the plasma "
+        "(as flow with Immersed cells/Enabled), DM tracked over time: a "
+        "flowing run per layout in <kind>_<n>_<seed>/, "
+        "flowing_layouts.csv, flowing_layouts_summary.csv."),
       entry_with<StretchingExperiment, StretchingParameters>(
         "stretching",
         "one cell pulled by two beads with forces up to Stretching/Maximum "

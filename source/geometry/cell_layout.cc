@@ -1,8 +1,12 @@
 #include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/geometry/cell_layout.h>
 
+#include <deal.II/numerics/rtree.h>
+
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <limits>
 #include <random>
 #include <sstream>
 
@@ -17,6 +21,45 @@ namespace rbc_ifem
       s.precision(4);
       s << value;
       return s.str();
+    }
+
+    /// The columns of a layout file, in order.
+    constexpr const char *layout_file_header = "x,y,z,axis_x,axis_y,axis_z";
+
+    /// @p text without blanks (and a CR of a file written on Windows).
+    std::string
+    without_blanks(const std::string &text)
+    {
+      std::string out;
+      for (const char c : text)
+        if (c != ' ' && c != '\t' && c != '\r')
+          out += c;
+      return out;
+    }
+
+    /**
+     * Points on the surface of the cell @p placement, the image of a
+     * 64 x 128 grid of sphere angles: about 0.2 µm apart on the rim of a
+     * 7.5 µm cell, so that the sampled distance between two surfaces
+     * exceeds the true one by (spacing)² / (8 radius of curvature) < 0.01 µm.
+     */
+    std::vector<Point<3>>
+    surface_samples(const EvansFungShape &shape, const CellPlacement &placement)
+    {
+      const unsigned int    n_theta = 64, n_phi = 128;
+      const Tensor<2, 3>    q = placement.rotation();
+      std::vector<Point<3>> samples;
+      for (unsigned int i = 0; i <= n_theta; ++i)
+        for (unsigned int j = 0; j < n_phi; ++j)
+          {
+            const double theta = numbers::PI * i / n_theta,
+                         phi   = 2. * numbers::PI * j / n_phi;
+            const Point<3> s(std::sin(theta) * std::cos(phi),
+                             std::sin(theta) * std::sin(phi),
+                             std::cos(theta));
+            samples.push_back(placement.center + q * shape.from_sphere(s));
+          }
+      return samples;
     }
   } // namespace
 
@@ -45,6 +88,11 @@ namespace rbc_ifem
     // smaller than the capillary's (checked above).
     length_of_cell = 2. * shape.extent(reference, e_x);
 
+    if (layout.kind == LayoutKind::file)
+      {
+        place_from_file(shape);
+        return;
+      }
     if (layout.n_cells > max_cells())
       {
         const std::string what =
@@ -78,6 +126,8 @@ namespace rbc_ifem
         case LayoutKind::clustered:
           place_clustered();
           break;
+        case LayoutKind::file:
+          break;
       }
   }
 
@@ -97,6 +147,39 @@ namespace rbc_ifem
   CellLayout::cell_length() const
   {
     return length_of_cell;
+  }
+
+  std::string
+  CellLayout::description() const
+  {
+    if (layout.kind == LayoutKind::file)
+      return "file " + layout.file + ", " + std::to_string(cells.size()) +
+             " cells";
+    return name_of(layout.kind, layout_kind_names()) + ", " +
+           std::to_string(layout.n_cells) + " cells, seed " +
+           std::to_string(layout.seed);
+  }
+
+  std::string
+  CellLayout::file_name() const
+  {
+    return "layout_" + name_of(layout.kind, layout_kind_names()) + "_" +
+           std::to_string(cells.size()) + "_" + std::to_string(layout.seed) +
+           ".csv";
+  }
+
+  CsvTable
+  CellLayout::table() const
+  {
+    CsvTable table(layout_file_header);
+    for (const CellPlacement &cell : cells)
+      table.add(cell.center[0],
+                cell.center[1],
+                cell.center[2],
+                cell.axis[0],
+                cell.axis[1],
+                cell.axis[2]);
+    return table;
   }
 
   unsigned int
@@ -179,5 +262,143 @@ namespace rbc_ifem
     const double first = centre - 0.5 * group_length + 0.5 * length_of_cell;
     for (unsigned int i = 0; i < layout.n_cells; ++i)
       add_cell_at(first + i * pitch);
+  }
+
+  void
+  CellLayout::place_from_file(const EvansFungShape &shape)
+  {
+    const std::string &path = layout.file;
+    const auto         fail = [&](const std::string &why) {
+      throw InputError("Layout/File", path, why);
+    };
+    std::ifstream in(path);
+    if (!in)
+      fail("the file does not exist or cannot be read.");
+    std::string line;
+    if (!std::getline(in, line) || without_blanks(line) != layout_file_header)
+      fail(std::string("line 1 must be the header ") + layout_file_header +
+           ".");
+    std::vector<unsigned int> lines;
+    for (unsigned int number = 2; std::getline(in, line); ++number)
+      {
+        if (without_blanks(line).empty())
+          continue;
+        const std::string where = "line " + std::to_string(number) + " (cell " +
+                                  std::to_string(cells.size()) + "): ";
+        std::vector<double> values;
+        std::istringstream  fields(line);
+        for (std::string field; std::getline(fields, field, ',');)
+          {
+            const std::string text = without_blanks(field);
+            std::size_t       used = 0;
+            try
+              {
+                values.push_back(std::stod(text, &used));
+              }
+            catch (const std::exception &)
+              {}
+            if (text.empty() || used != text.size() ||
+                !std::isfinite(values.back()))
+              fail(where + "'" + field + "' is not a number.");
+          }
+        if (values.size() != 6)
+          fail(where + "it has " + std::to_string(values.size()) +
+               " values; a row holds 6: " + layout_file_header + ".");
+        CellPlacement cell{Point<3>(values[0], values[1], values[2]),
+                           Tensor<1, 3>({values[3], values[4], values[5]})};
+        if (!(cell.axis.norm() > 0.))
+          fail(where + "the axis (0, 0, 0) is not a direction.");
+        cells.push_back(cell);
+        lines.push_back(number);
+      }
+    if (cells.empty())
+      fail("it has no cells: add a row x,y,z,axis_x,axis_y,axis_z per cell.");
+    check_file_cells(shape, lines);
+  }
+
+  void
+  CellLayout::check_file_cells(const EvansFungShape            &shape,
+                               const std::vector<unsigned int> &lines) const
+  {
+    const double gap       = layout.minimum_gap;
+    const double length    = geometry.capillary_length;
+    const auto   cell_text = [&](const unsigned int c) {
+      return "cell " + std::to_string(c) + " (line " +
+             std::to_string(lines[c]) + ")";
+    };
+    const auto fail = [&](const std::string &why) {
+      throw InputError("Layout/File", layout.file, why);
+    };
+    const Tensor<1, 3> e_x{{1., 0., 0.}};
+    for (unsigned int c = 0; c < cells.size(); ++c)
+      {
+        const double reach = shape.extent(cells[c], e_x);
+        const double from  = cells[c].center[0] - reach,
+                     to    = cells[c].center[0] + reach;
+        if (from < 0.5 * gap - 1e-12 * length ||
+            to > length - 0.5 * gap + 1e-12 * length)
+          fail(
+            cell_text(c) + " spans x = " + format(from) + " to " + format(to) +
+            " µm; cells keep half of Layout/Minimum gap = " + format(gap) +
+            " µm from the end faces x = 0 and x = " + format(length) + " µm.");
+        const double radius = shape.farthest_from_axis(cells[c]);
+        if (radius >= geometry.capillary_radius)
+          fail(cell_text(c) + " reaches " + format(radius) +
+               " µm from the axis, outside the lumen of Geometry/Capillary "
+               "radius = " +
+               format(geometry.capillary_radius) + " µm.");
+      }
+
+    namespace bgi = boost::geometry::index;
+    std::vector<std::vector<Point<3>>> samples;
+    for (const CellPlacement &cell : cells)
+      samples.push_back(surface_samples(shape, cell));
+    for (unsigned int i = 0; i < cells.size(); ++i)
+      {
+        const auto tree = pack_rtree(samples[i]);
+        for (unsigned int j = i + 1; j < cells.size(); ++j)
+          {
+            // Cells lie inside the ball of radius R about their centre.
+            if (cells[i].center.distance(cells[j].center) >=
+                2. * shape.radius() + gap)
+              continue;
+            double closest = std::numeric_limits<double>::infinity();
+            bool   overlap = false;
+            for (const Point<3> &x : samples[j])
+              {
+                for (const Point<3> &nearest :
+                     tree | bgi::adaptors::queried(bgi::nearest(x, 1)))
+                  closest = std::min(closest, x.distance(nearest));
+                overlap = overlap || shape.contains(cells[i], x);
+              }
+            for (const Point<3> &x : samples[i])
+              overlap = overlap || shape.contains(cells[j], x);
+            if (overlap || closest < gap)
+              fail(cell_text(i) + " and " + cell_text(j) +
+                   (overlap ? " overlap" :
+                              " are " + format(closest) + " µm apart") +
+                   "; cells keep Layout/Minimum gap = " + format(gap) +
+                   " µm between them.");
+          }
+      }
+  }
+
+  CellLayout
+  study_layout(const LayoutParameters   &layout,
+               const GeometryParameters &geometry,
+               const CellParameters     &cells)
+  {
+    try
+      {
+        return CellLayout(layout, geometry, cells);
+      }
+    catch (const InputError &e)
+      {
+        throw InputError("Layout study/Numbers of cells",
+                         std::to_string(layout.n_cells),
+                         "the " + name_of(layout.kind, layout_kind_names()) +
+                           " layout of that many cells is impossible: " +
+                           e.what());
+      }
   }
 } // namespace rbc_ifem

@@ -141,6 +141,25 @@ namespace rbc_ifem
     });
   }
 
+  double
+  EvansFungShape::farthest_from_axis(const CellPlacement &placement) const
+  {
+    return maximize_over_surface(placement, [](const Point<3> &x) {
+      return std::hypot(x[1], x[2]);
+    });
+  }
+
+  bool
+  EvansFungShape::contains(const CellPlacement &placement,
+                           const Point<3>      &x) const
+  {
+    // In the local frame the shape is |z| < z(r) for r < R (z(r) > 0).
+    const Tensor<1, 3> local =
+      transpose(placement.rotation()) * (x - placement.center);
+    const double r = std::hypot(local[0], local[1]);
+    return r < R && std::abs(local[2]) < half_thickness(r);
+  }
+
   EvansFungManifold::EvansFungManifold(const EvansFungShape &shape,
                                        const CellPlacement  &placement)
     : shape(shape)

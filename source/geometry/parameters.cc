@@ -171,7 +171,8 @@ namespace rbc_ifem
     static const SelectionNames<LayoutKind> names{
       {LayoutKind::uniform, "uniform"},
       {LayoutKind::random, "random"},
-      {LayoutKind::clustered, "clustered"}};
+      {LayoutKind::clustered, "clustered"},
+      {LayoutKind::file, "file"}};
     return names;
   }
 
@@ -186,12 +187,14 @@ namespace rbc_ifem
                   "uniform: equal spacing over the segment; random: "
                   "positions drawn from Seed, uniformly over all "
                   "non-overlapping arrangements; clustered: cells stacked "
-                  "at Minimum gap, the group placed by Cluster position.");
+                  "at Minimum gap, the group placed by Cluster position; "
+                  "file: the cells of File.");
     add_parameter(prm,
                   "Number of cells",
                   n_cells,
                   "Number of red cells in the segment. At most "
-                  "floor(length / (cell length + Minimum gap)) fit.",
+                  "floor(length / (cell length + Minimum gap)) fit. Not "
+                  "used with Kind = file, whose rows are the cells.",
                   Patterns::Integer(0));
     add_parameter(prm,
                   "Seed",
@@ -212,6 +215,18 @@ namespace rbc_ifem
                   "Centre of the clustered group as a fraction of the "
                   "capillary length (0.5: centred).",
                   Patterns::Double(0., 1.));
+    add_parameter(prm,
+                  "File",
+                  file,
+                  "Kind = file: a CSV file with the header "
+                  "x,y,z,axis_x,axis_y,axis_z and one row per cell, its "
+                  "centre [µm] and the direction of its symmetry axis (any "
+                  "length; Cells/Axis is not used). The cells must keep "
+                  "Minimum gap between them and half of it from the end "
+                  "faces, and lie inside the lumen. The layouts experiments "
+                  "write every layout they draw in this form "
+                  "(layout_<kind>_<n>_<seed>.csv).",
+                  Patterns::FileName());
     prm.leave_subsection();
   }
 
@@ -222,5 +237,69 @@ namespace rbc_ifem
       throw InputError("Layout/Minimum gap",
                        to_text(minimum_gap),
                        "it must be > 0 µm: cells must not touch.");
+    if (kind == LayoutKind::file && file.empty())
+      throw InputError("Layout/File",
+                       "",
+                       "Layout/Kind = file needs the CSV file of the cells.");
+  }
+
+  void
+  LayoutStudyParameters::add_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Layout study");
+    add_selection(prm,
+                  "Kinds",
+                  kinds,
+                  layout_kind_names(),
+                  "Experiments 'layouts' and 'flowing layouts': the layout "
+                  "kinds to compare (not file: a file is one layout).");
+    add_parameter(prm,
+                  "Numbers of cells",
+                  numbers_of_cells,
+                  "Experiments 'layouts' and 'flowing layouts': the numbers "
+                  "of cells N to place in the segment, each in every kind.",
+                  Patterns::List(Patterns::Integer(1), 1));
+    add_parameter(prm,
+                  "Random seeds",
+                  n_seeds,
+                  "Experiments 'layouts' and 'flowing layouts': random "
+                  "layouts are drawn with seeds Layout/Seed, Layout/Seed + "
+                  "1, ...; layouts.csv reports their mean and spread.",
+                  Patterns::Integer(1));
+    prm.leave_subsection();
+  }
+
+  void
+  LayoutStudyParameters::validate() const
+  {
+    for (const LayoutKind kind : kinds)
+      if (kind == LayoutKind::file)
+        throw InputError("Layout study/Kinds",
+                         "file",
+                         "the study places N cells of each kind; a layout "
+                         "from a file is run by Experiment = diffusion or "
+                         "flow with Layout/Kind = file.");
+  }
+
+  std::vector<std::vector<LayoutParameters>>
+  LayoutStudyParameters::layouts(const LayoutParameters &layout) const
+  {
+    std::vector<std::vector<LayoutParameters>> study;
+    for (const LayoutKind kind : kinds)
+      for (const unsigned int n : numbers_of_cells)
+        {
+          study.emplace_back();
+          const unsigned int n_samples =
+            kind == LayoutKind::random ? n_seeds : 1;
+          for (unsigned int sample = 0; sample < n_samples; ++sample)
+            {
+              LayoutParameters one = layout;
+              one.kind             = kind;
+              one.n_cells          = n;
+              one.seed             = layout.seed + sample;
+              study.back().push_back(one);
+            }
+        }
+    return study;
   }
 } // namespace rbc_ifem

@@ -333,6 +333,12 @@ namespace rbc_ifem
                                                           communicator);
                              });
     record.dm.add_row(dm_row(record.time, uptake));
+    if (!observers.empty())
+      {
+        const double gap = smallest_cell_gap();
+        for (RunObserver *observer : observers)
+          observer->record_uptake(record.time, uptake, gap);
+      }
     return uptake.dm_total;
   }
 
@@ -419,6 +425,19 @@ namespace rbc_ifem
           stop(why.str(), last_good);
       }
     return gaps;
+  }
+
+  double
+  IFEMSimulation::smallest_cell_gap() const
+  {
+    double smallest = std::numeric_limits<double>::infinity();
+    if (cells.size() > 1)
+      for (const CellGaps &gaps : measure_gaps(cells.membranes(),
+                                               cells.positions(),
+                                               domain.wall_radius,
+                                               domain.period))
+        smallest = std::min(smallest, gaps.to_cells);
+    return smallest;
   }
 
   void
@@ -588,16 +607,8 @@ namespace rbc_ifem
         const std::vector<CellShape> shapes =
           output ? record_shapes() : cells.shapes();
         if (cells.size() > 1)
-          {
-            double smallest_gap = std::numeric_limits<double>::infinity();
-            for (const CellGaps &gaps : measure_gaps(cells.membranes(),
-                                                     cells.positions(),
-                                                     domain.wall_radius,
-                                                     domain.period))
-              smallest_gap = std::min(smallest_gap, gaps.to_cells);
-            progress << ", smallest gap between cells " << smallest_gap
-                     << " µm";
-          }
+          progress << ", smallest gap between cells " << smallest_cell_gap()
+                   << " µm";
         progress << "; cell 0: volume change "
                  << shapes[0].volume / cells.reference_volume(0) - 1.
                  << ", deformation index " << shapes[0].deformation_index;

@@ -4,7 +4,8 @@
 #                       RBC_IFEM PRM EXPECTED_DIR NUMDIFF
 #
 # Runs an experiment (on RANKS MPI ranks with -n) in an empty directory and
-# compares each file stored in EXPECTED_DIR with the run's file of that name
+# compares each file stored in EXPECTED_DIR (and its folders: a run's
+# subfolder of that name) with the run's file of that name
 # using numdiff (relative TOLERANCE, default 1e-8; absolute 1e-10 for values
 # near 0). run.log stands for the program's log, less the lines naming the
 # number of ranks and the memory used. For a CSV file only the columns
@@ -64,20 +65,21 @@ select_columns() {
 
 directory=$(sed -n 's/^set Output directory *= *//p' "$prm")
 failed=0
-for reference in "$expected"/*; do
-  name=$(basename "$reference")
+while IFS= read -r name; do
+  reference="$expected/$name"
   result="$directory/$name"
   [ "$name" = run.log ] && result=run.log
   if [[ $name == *.csv ]]; then
-    select_columns "$reference" "$result" >"selected_$name"
-    result="selected_$name"
+    selected="selected_${name//\//_}"
+    select_columns "$reference" "$result" >"$selected"
+    result=$selected
   fi
   if ! "$numdiff" -q -s ' \t\n,' -r "$tolerance" -a 1e-10 "$reference" "$result"; then
     echo "FAILED: $name differs from the stored $reference (relative tolerance $tolerance):"
     "$numdiff" -s ' \t\n,' -r "$tolerance" -a 1e-10 "$reference" "$result" | head -20
     failed=1
   fi
-done
+done < <(cd "$expected" && find . -type f | sed 's|^\./||' | sort)
 [ $failed -eq 0 ] && echo "ok: matches $expected (relative tolerance $tolerance)"
 
 for band in "${bands[@]}"; do

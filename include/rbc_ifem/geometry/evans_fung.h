@@ -89,6 +89,15 @@ namespace rbc_ifem
     double
     extent(const CellPlacement &placement, const Tensor<1, 3> &direction) const;
 
+    /// The largest distance from the x axis (the capillary's) of a cell
+    /// with the given @p placement, by the same search as extent().
+    double
+    farthest_from_axis(const CellPlacement &placement) const;
+
+    /// Whether the point @p x lies strictly inside the cell placed so.
+    bool
+    contains(const CellPlacement &placement, const Point<3> &x) const;
+
   private:
     /// g(t) of the class documentation, and its derivative.
     double

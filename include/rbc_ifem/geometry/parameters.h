@@ -7,6 +7,8 @@
 #include <deal.II/base/tensor.h>
 
 #include <optional>
+#include <string>
+#include <vector>
 
 namespace rbc_ifem
 {
@@ -84,7 +86,8 @@ namespace rbc_ifem
   {
     uniform,
     random,
-    clustered
+    clustered,
+    file ///< centres and axes read from Layout/File
   };
 
   const SelectionNames<LayoutKind> &
@@ -98,12 +101,44 @@ namespace rbc_ifem
     unsigned int seed             = 1;
     double       minimum_gap      = 0.2; ///< [µm]
     double       cluster_position = 0.5; ///< centre of a cluster / length
+    /// Kind = file: the CSV file x,y,z,axis_x,axis_y,axis_z, a row per cell.
+    std::string file;
 
     void
     add_parameters(ParameterHandler &prm);
-    /// Throws InputError unless Minimum gap > 0.
+    /// Throws InputError unless Minimum gap > 0 and Kind = file has a File.
     void
     validate() const;
+  };
+
+  /**
+   * The layouts of the paper's study (subsection "Layout study"), for the
+   * experiments 'layouts' (rigid cells) and 'flowing layouts' (cells
+   * carried by the plasma): every Kind for every number of cells, several
+   * seeds for random layouts; the other entries come from subsection
+   * Layout.
+   */
+  struct LayoutStudyParameters
+  {
+    std::vector<LayoutKind>   kinds{LayoutKind::uniform,
+                                  LayoutKind::random,
+                                  LayoutKind::clustered};
+    std::vector<unsigned int> numbers_of_cells{1, 2, 3, 4, 5, 6, 7};
+    unsigned int              n_seeds = 5;
+
+    void
+    add_parameters(ParameterHandler &prm);
+    /// Throws InputError if Kinds holds file: a file is one layout.
+    void
+    validate() const;
+
+    /**
+     * The layouts of the study, in order: for each kind, for each number of
+     * cells, its samples (seeds @p layout.seed, @p layout.seed + 1, ... for
+     * random layouts, one otherwise), every other entry from @p layout.
+     */
+    std::vector<std::vector<LayoutParameters>>
+    layouts(const LayoutParameters &layout) const;
   };
 } // namespace rbc_ifem
 

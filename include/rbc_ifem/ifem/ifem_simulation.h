@@ -105,6 +105,10 @@ namespace rbc_ifem
     /// cell reaches the wall.
     std::vector<CellGaps>
     check_gaps(const std::vector<Vector<double>> &last_good);
+    /// The smallest gap between the membranes of two cells now [µm]
+    /// (infinite for one cell).
+    double
+    smallest_cell_gap() const;
     void
     write_fields();
     void

@@ -2,7 +2,11 @@
 // seeds 1..20 no two membrane meshes come closer than Minimum gap and none
 // touches the wall (measured between the meshed surfaces, not the centres);
 // uniform spacing and clustered gaps are exact; random layouts are
-// reproducible; the hematocrit is total cell volume / lumen volume.
+// reproducible; the hematocrit is total cell volume / lumen volume. A
+// layout written as a file (Layout/Kind = file) reads back as the same
+// cells, and a file whose cells overlap, come too close, leave the segment
+// or the lumen, or that is malformed, is refused with the file, the line
+// and the cell named.
 
 #include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/geometry/cell_layout.h>
@@ -10,6 +14,8 @@
 
 #include "check.h"
 
+#include <cstdio>
+#include <fstream>
 #include <memory>
 
 using namespace rbc_ifem;
@@ -86,6 +92,8 @@ main()
   // < 1e-3 µm at 2 refinements) and stay off the wall.
   for (const auto &[kind, kind_name] : layout_kind_names())
     {
+      if (kind == LayoutKind::file)
+        continue; // the round trip below
       layout.kind             = kind;
       double       worst_gap  = std::numeric_limits<double>::infinity();
       double       worst_wall = std::numeric_limits<double>::infinity();
@@ -176,6 +184,114 @@ main()
     check.holds("random: seeds 7 and 8 give different layouts", different);
   }
 
+  // Kind = file: a random layout written as Layout/File reads back as the
+  // same cells (to the ten digits of the file).
+  {
+    layout.kind    = LayoutKind::random;
+    layout.n_cells = 5;
+    layout.seed    = 3;
+    const CellLayout  drawn(layout, geometry, cells);
+    const std::string path = "cell_layout_test_" + drawn.file_name();
+    drawn.table().write(path);
+    LayoutParameters from_file = layout;
+    from_file.kind             = LayoutKind::file;
+    from_file.file             = path;
+    const CellLayout read(from_file, geometry, cells);
+    double           worst = 0.;
+    for (unsigned int i = 0; i < 5; ++i)
+      worst = std::max(
+        {worst,
+         read.placements()[i].center.distance(drawn.placements()[i].center),
+         (read.placements()[i].axis - drawn.placements()[i].axis).norm()});
+    check.holds("file: as many cells as written",
+                read.placements().size() == 5);
+    check.at_most("file: largest change of a centre or axis", worst, 1e-8);
+    std::remove(path.c_str());
+  }
+
+  // Bad files: each refused, the message naming the file, the line and the
+  // cell. The cells are 2.4594 µm long along their axis x: centres
+  // 2.5594 µm apart leave a 0.1 µm gap, less than Minimum gap.
+  {
+    const std::string path    = "cell_layout_test_bad.csv";
+    const auto        refused = [&](const std::string &what,
+                             const std::string &text,
+                             const std::string &expected) {
+      std::ofstream(path) << text;
+      LayoutParameters l = layout;
+      l.kind             = LayoutKind::file;
+      l.file             = path;
+      try
+        {
+          CellLayout(l, geometry, cells);
+          check.holds("file, " + what + ": refused", false);
+        }
+      catch (const InputError &e)
+        {
+          const std::string message = e.what();
+          std::cout << "  " << message << '\n';
+          check.holds("file, " + what + ": refused, naming the file and '" +
+                        expected + "'",
+                      message.find(path) != std::string::npos &&
+                        message.find(expected) != std::string::npos);
+        }
+    };
+    const std::string header = "x,y,z,axis_x,axis_y,axis_z\n";
+    refused("overlapping cells",
+            header + "5,0,0,1,0,0\n6,0,0,0,1,1\n",
+            "cell 0 (line 2) and cell 1 (line 3) overlap");
+    refused("cells 0.1 µm apart",
+            header + "5,0,0,1,0,0\n8,0,0,1,0,0\n\n10.5594,0,0,1,0,0\n",
+            "cell 1 (line 3) and cell 2 (line 5) are 0.1");
+    refused("a cell across an end face",
+            header + "1,0,0,1,0,0\n",
+            "cell 0 (line 2) spans x = -0.2297");
+    refused("a cell outside the lumen",
+            header + "10,0,1.5,1,0,0\n",
+            "cell 0 (line 2) reaches 5.25");
+    refused("a word for a number",
+            header + "10,0,0,1,0,0\n14,zero,0,1,0,0\n",
+            "line 3 (cell 1): 'zero' is not a number");
+    refused("five values", header + "10,0,0,1,0\n", "it has 5 values");
+    refused("a zero axis", header + "10,0,0,0,0,0\n", "is not a direction");
+    refused("no header", "10,0,0,1,0,0\n", "line 1 must be the header");
+    refused("no cells", header, "it has no cells");
+    std::remove(path.c_str());
+    try
+      {
+        LayoutParameters l = layout;
+        l.kind             = LayoutKind::file;
+        l.file             = "no_such_layout.csv";
+        CellLayout(l, geometry, cells);
+        check.holds("a missing file is refused", false);
+      }
+    catch (const InputError &e)
+      {
+        check.holds(std::string("a missing file is refused: ") + e.what(),
+                    std::string(e.what()).find("no_such_layout.csv") !=
+                      std::string::npos);
+      }
+  }
+
+  // The exact shape's inside: the centre, not a point beyond the rim.
+  {
+    const EvansFungShape shape(cells.diameter);
+    const CellPlacement  placed{Point<3>(5., 1., 0.),
+                               Tensor<1, 3>({0., 0., 2.})};
+    check.holds("contains(): the centre is inside",
+                shape.contains(placed, Point<3>(5., 1., 0.)));
+    check.holds("contains(): the rim region at 0.99 R is inside",
+                shape.contains(placed, Point<3>(5. + 0.99 * 3.75, 1., 0.)));
+    check.holds("contains(): 1.01 R is outside",
+                !shape.contains(placed, Point<3>(5. + 1.01 * 3.75, 1., 0.)));
+    check.holds("contains(): the dimple's axis at z = 0.5 µm is outside",
+                !shape.contains(placed, Point<3>(5., 1., 0.5)));
+    check.near("farthest_from_axis() of a cell standing across the axis",
+               shape.farthest_from_axis(placed),
+               1. + 3.75,
+               1e-8);
+  }
+
   // Tilted cells (axis along z, in the cross-section): the cell length is
   // the diameter, and they still keep the gap.
   {
@@ -219,10 +335,11 @@ main()
   };
   layout.n_cells = 8;
   for (const auto &[kind, kind_name] : layout_kind_names())
-    {
-      layout.kind = kind;
-      throws("8 cells, " + kind_name, layout);
-    }
+    if (kind != LayoutKind::file)
+      {
+        layout.kind = kind;
+        throws("8 cells, " + kind_name, layout);
+      }
   layout.n_cells          = 5;
   layout.cluster_position = 0.1;
   throws("a cluster of 5 centred at 0.1 L", layout);

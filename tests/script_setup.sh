@@ -1,4 +1,20 @@
-# Sourced by the script tests that run rbc-ifem (compare_run.sh, restart.sh).
+# Sourced by the script tests that run rbc-ifem (compare_run.sh, restart.sh, ...).
+
+# read_rank_options "$@": the options -n RANKS -m MPIEXEC of a script into
+# `ranks` and `mpiexec` (empty when not given); the script then shifts its
+# arguments by $((OPTIND - 1)).
+read_rank_options() {
+  ranks=
+  mpiexec=
+  local option
+  while getopts "n:m:" option; do
+    case $option in
+      n) ranks=$OPTARG ;;
+      m) mpiexec=$OPTARG ;;
+      *) exit 2 ;;
+    esac
+  done
+}
 
 # set_launcher RANKS MPIEXEC: the array `launcher` that prefixes a run,
 # empty for a serial run (RANKS empty), else MPIEXEC -np RANKS (as root too).

@@ -35,8 +35,7 @@ namespace rbc_ifem
   void
   FlowingLayoutsParameters::validate(const Parameters &parameters) const
   {
-    const double duration =
-      parameters.time.n_steps * parameters.time.time_step;
+    const double duration = parameters.time.n_steps * parameters.time.time_step;
     if (parameters.immersed.diffusion_interval == 0 ||
         parameters.immersed.diffusion_interval > parameters.time.n_steps)
       throw InputError("Immersed cells/Diffusion interval",
@@ -95,6 +94,25 @@ namespace rbc_ifem
              std::to_string(layout.n_cells) + "_" + std::to_string(layout.seed);
     }
 
+    /// The first of @p earlier layouts whose cells are exactly @p cells,
+    /// or earlier.size() if none is.
+    unsigned int
+    first_alike(const std::vector<std::vector<CellPlacement>> &earlier,
+                const std::vector<CellPlacement>              &cells)
+    {
+      const auto alike = [&](const std::vector<CellPlacement> &other) {
+        return std::equal(cells.begin(),
+                          cells.end(),
+                          other.begin(),
+                          other.end(),
+                          [](const CellPlacement &a, const CellPlacement &b) {
+                            return a.center == b.center && a.axis == b.axis;
+                          });
+      };
+      return std::find_if(earlier.begin(), earlier.end(), alike) -
+             earlier.begin();
+    }
+
     /// "" for an infinite gap (one cell), the number otherwise.
     std::string
     gap_text(const double gap)
@@ -136,56 +154,49 @@ namespace rbc_ifem
         {
           const CellLayout cells =
             study_layout(layout, parameters.geometry, parameters.cells);
-          const auto same = [&](const std::vector<CellPlacement> &other) {
-            const auto &mine = cells.placements();
-            return std::equal(mine.begin(),
-                              mine.end(),
-                              other.begin(),
-                              other.end(),
-                              [](const CellPlacement &a, const CellPlacement &b) {
-                                return a.center == b.center && a.axis == b.axis;
-                              });
-          };
-          same_cells_as.push_back(
-            std::find_if(placed.begin(), placed.end(), same) - placed.begin());
+          same_cells_as.push_back(first_alike(placed, cells.placements()));
           placed.push_back(cells.placements());
           layouts.push_back(layout);
           hematocrits.push_back(cells.hematocrit(
             std::vector<double>(cells.placements().size(), cell_volume)));
-          runs.push_back(std::make_unique<RunParameters>());
-          runs.back()->derive(
-            parameter_file_text,
-            {{"", "Experiment", "flow"},
-             {"",
-              "Output directory",
-              parameters.output_directory + "/" + run_name(layout)},
-             {"Layout",
-              "Kind",
-              name_of(layout.kind, layout_kind_names())},
-             {"Layout", "Number of cells", std::to_string(layout.n_cells)},
-             {"Layout", "Seed", std::to_string(layout.seed)},
-             {"Immersed cells", "Enabled", "true"},
-             {"Immersed cells", "Resume", "false"}});
+          runs.push_back(derive_run(layout));
         }
     const TimeParameters &time = parameters.time;
     pcout << "  " << runs.size() << " flowing runs of "
           << time.n_steps * time.time_step << " s (" << time.n_steps
           << " steps), DM every " << parameters.immersed.diffusion_interval
-          << " steps, in " << parameters.output_directory << "/<kind>_<n>_<seed>"
-          << std::endl;
+          << " steps, in " << parameters.output_directory
+          << "/<kind>_<n>_<seed>" << std::endl;
+  }
+
+  std::unique_ptr<RunParameters>
+  FlowingLayoutsExperiment::derive_run(const LayoutParameters &layout) const
+  {
+    auto run = std::make_unique<RunParameters>();
+    run->derive(parameter_file_text,
+                {{"", "Experiment", "flow"},
+                 {"",
+                  "Output directory",
+                  parameters.output_directory + "/" + run_name(layout)},
+                 {"Layout", "Kind", name_of(layout.kind, layout_kind_names())},
+                 {"Layout", "Number of cells", std::to_string(layout.n_cells)},
+                 {"Layout", "Seed", std::to_string(layout.seed)},
+                 {"Immersed cells", "Enabled", "true"},
+                 {"Immersed cells", "Resume", "false"}});
+    return run;
   }
 
   FlowingLayoutResult
   FlowingLayoutsExperiment::run_one(const unsigned int r)
   {
-    const Parameters       &p      = runs[r]->model();
-    Timer                   clock;
-    TimerOutput             run_timer(MPI_COMM_SELF,
+    const Parameters &p = runs[r]->model();
+    Timer             clock;
+    TimerOutput       run_timer(MPI_COMM_SELF,
                           pcout,
                           TimerOutput::never,
                           TimerOutput::wall_times);
-    UptakeHistory           uptake;
-    IFEMSimulation          simulation(p,
+    UptakeHistory     uptake;
+    IFEMSimulation    simulation(p,
                               FlowDomain::capillary(p),
                               communicator,
                               run_timer);
@@ -203,8 +214,7 @@ namespace rbc_ifem
     result.final_gap    = result.solves.back().smallest_gap;
     result.smallest_gap = std::numeric_limits<double>::infinity();
     const double from   = result.solves.back().time - own.steady_window;
-    double       low    = std::numeric_limits<double>::infinity(),
-           high = -low, sum = 0.;
+    double low = std::numeric_limits<double>::infinity(), high = -low, sum = 0.;
     unsigned int n_steady = 0;
     for (const auto &solve : result.solves)
       {
@@ -228,8 +238,8 @@ namespace rbc_ifem
                                      const FlowingLayoutResult &result)
   {
     const LayoutParameters &layout = layouts[r];
-    const std::string kind = name_of(layout.kind, layout_kind_names());
-    const unsigned int n   = layout.n_cells;
+    const std::string       kind   = name_of(layout.kind, layout_kind_names());
+    const unsigned int      n      = layout.n_cells;
     for (const auto &solve : result.solves)
       history.add(kind,
                   n,
@@ -291,8 +301,7 @@ namespace rbc_ifem
         add_rows(r, results.back());
         if (Utilities::MPI::this_mpi_process(communicator) == 0)
           {
-            history.write(parameters.output_directory +
-                          "/flowing_layouts.csv");
+            history.write(parameters.output_directory + "/flowing_layouts.csv");
             summary.write(parameters.output_directory +
                           "/flowing_layouts_summary.csv");
           }
@@ -302,10 +311,9 @@ namespace rbc_ifem
               << result.static_dm << " at rest, " << result.steady_dm
               << " steady (" << std::showpos
               << 100. * (result.steady_dm / result.static_dm - 1.)
-              << std::noshowpos << " %, spread "
-              << 100. * result.steady_spread << " % over the last "
-              << own.steady_window << " s) µm³/(s Torr); " << elapsed
-              << " s so far, about "
+              << std::noshowpos << " %, spread " << 100. * result.steady_spread
+              << " % over the last " << own.steady_window
+              << " s) µm³/(s Torr); " << elapsed << " s so far, about "
               << elapsed / (r + 1) * (runs.size() - r - 1) << " s left"
               << std::endl;
       }

@@ -9,15 +9,7 @@
 # (min_gap > 0 in flowing_layouts.csv and in every cells.csv of the runs).
 set -u
 source "$(dirname "$0")/../script_setup.sh"
-ranks=
-mpiexec=
-while getopts "n:m:" option; do
-  case $option in
-    n) ranks=$OPTARG ;;
-    m) mpiexec=$OPTARG ;;
-    *) exit 2 ;;
-  esac
-done
+read_rank_options "$@"
 shift $((OPTIND - 1))
 exe=$1
 prm=$2

@@ -6,15 +6,7 @@
 # step 2n, and requires the tables of both to agree to 1e-12 (relative).
 set -u
 source "$(dirname "$0")/../script_setup.sh"
-ranks=
-mpiexec=
-while getopts "n:m:" option; do
-  case $option in
-    n) ranks=$OPTARG ;;
-    m) mpiexec=$OPTARG ;;
-    *) exit 2 ;;
-  esac
-done
+read_rank_options "$@"
 shift $((OPTIND - 1))
 exe=$1
 prm=$2

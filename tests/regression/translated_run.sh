@@ -12,15 +12,7 @@
 # a shift that carries the cells through the segment's end.
 set -u
 source "$(dirname "$0")/../script_setup.sh"
-ranks=
-mpiexec=
-while getopts "n:m:" option; do
-  case $option in
-    n) ranks=$OPTARG ;;
-    m) mpiexec=$OPTARG ;;
-    *) exit 2 ;;
-  esac
-done
+read_rank_options "$@"
 shift $((OPTIND - 1))
 exe=$1
 prm=$2

@@ -35,13 +35,13 @@ namespace rbc_ifem
       double time, dm_total, smallest_gap; ///< [s], [µm³ s⁻¹ Torr⁻¹], [µm]
     };
     std::vector<Solve> solves;
-    double static_dm     = 0.; ///< DM of the undeformed cells, t = 0
-    double steady_dm     = 0.; ///< mean DM over the steady window
-    double steady_spread = 0.; ///< (max - min) / mean over that window
-    double smallest_gap  = 0.; ///< over the DM solves [µm]; inf: one cell
-    double final_gap     = 0.; ///< at the last solve [µm]
-    double deformation   = 0.; ///< mean deformation index at the end
-    double wall_seconds  = 0.;
+    double             static_dm = 0.; ///< DM of the undeformed cells, t = 0
+    double             steady_dm = 0.; ///< mean DM over the steady window
+    double steady_spread         = 0.; ///< (max - min) / mean over that window
+    double smallest_gap = 0.; ///< over the DM solves [µm]; inf: one cell
+    double final_gap    = 0.; ///< at the last solve [µm]
+    double deformation  = 0.; ///< mean deformation index at the end
+    double wall_seconds = 0.;
   };
 
   /**
@@ -55,11 +55,12 @@ namespace rbc_ifem
    * the cells' contact forces of subsection Cell interactions (aggregation
    * as Cell interactions/Aggregation says).
    *
-   * Each run is a flowing run of its own in Output directory/<kind>_<n>_<seed>/,
-   * its parameters derived from these (RunParameters::derive(): Experiment
-   * = flow and the run's layout), so its parameters.prm reruns it alone;
-   * it writes the files of a flowing run there (dm.csv, cells.csv with the
-   * gaps, flow.csv, the VTU series). The study writes, after every run,
+   * Each run is a flowing run of its own in Output
+   * directory/<kind>_<n>_<seed>/, its parameters derived from these
+   * (RunParameters::derive(): Experiment = flow and the run's layout), so its
+   * parameters.prm reruns it alone; it writes the files of a flowing run there
+   * (dm.csv, cells.csv with the gaps, flow.csv, the VTU series). The study
+   * writes, after every run,
    *
    *  - layout_<kind>_<n>_<seed>.csv: the cells it placed (Layout/Kind = file
    *    reads it back);
@@ -92,6 +93,12 @@ namespace rbc_ifem
     /// The runs, one after the other, the tables after each.
     void
     execute() override;
+
+    /// The parameters of the flowing run of @p layout, from these: Experiment
+    /// = flow in Output directory/<kind>_<n>_<seed>, its parameters.prm
+    /// reruns it alone.
+    std::unique_ptr<RunParameters>
+    derive_run(const LayoutParameters &layout) const;
 
     /// Run @p r and read its DM history.
     FlowingLayoutResult

@@ -1,11 +1,10 @@
 #include <rbc_ifem/base/input_error.h>
-#include <rbc_ifem/base/output.h>
 #include <rbc_ifem/base/parameter_tools.h>
+#include <rbc_ifem/experiments/derived_flow_run.h>
 #include <rbc_ifem/experiments/flowing_layouts_experiment.h>
 #include <rbc_ifem/experiments/registry.h>
 #include <rbc_ifem/geometry/cell_layout.h>
 #include <rbc_ifem/ifem/flow_domain.h>
-#include <rbc_ifem/ifem/ifem_simulation.h>
 #include <rbc_ifem/ifem/run_observer.h>
 
 #include <deal.II/base/patterns.h>
@@ -191,22 +190,9 @@ namespace rbc_ifem
   {
     const Parameters &p = runs[r]->model();
     Timer             clock;
-    TimerOutput       run_timer(MPI_COMM_SELF,
-                          pcout,
-                          TimerOutput::never,
-                          TimerOutput::wall_times);
     UptakeHistory     uptake;
-    IFEMSimulation    simulation(p,
-                              FlowDomain::capillary(p),
-                              communicator,
-                              run_timer);
-    simulation.add_observer(uptake);
-    simulation.setup();
-    write_parameters(parameter_text(runs[r]->handler()),
-                     p.output_directory,
-                     communicator);
-    simulation.run();
-    write_timing(run_timer, p.output_directory, communicator);
+    run_derived_flow(
+      *runs[r], FlowDomain::capillary(p), uptake, communicator, pcout);
 
     FlowingLayoutResult result;
     result.solves       = uptake.solves;

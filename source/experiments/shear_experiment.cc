@@ -1,13 +1,12 @@
 #include <rbc_ifem/base/csv.h>
 #include <rbc_ifem/base/input_error.h>
-#include <rbc_ifem/base/output.h>
 #include <rbc_ifem/base/parameter_tools.h>
 #include <rbc_ifem/coupling/cell_population.h>
 #include <rbc_ifem/coupling/time_step_limit.h>
+#include <rbc_ifem/experiments/derived_flow_run.h>
 #include <rbc_ifem/experiments/registry.h>
 #include <rbc_ifem/experiments/shear_experiment.h>
 #include <rbc_ifem/ifem/flow_domain.h>
-#include <rbc_ifem/ifem/ifem_simulation.h>
 #include <rbc_ifem/ifem/run_observer.h>
 
 #include <deal.II/base/patterns.h>
@@ -293,24 +292,12 @@ namespace rbc_ifem
           << " s (γ̇ Δt = " << shear.shear_rate * p.time.time_step << "), "
           << p.time.n_steps << " steps, in " << p.output_directory << std::endl;
     Timer                    clock;
-    TimerOutput              run_timer(MPI_COMM_SELF,
-                          pcout,
-                          TimerOutput::never,
-                          TimerOutput::wall_times);
     TaylorDeformationHistory deformation;
-    IFEMSimulation           simulation(p,
-                              FlowDomain::shear_box(shear.box,
-                                                    shear.shear_rate,
-                                                    p),
-                              communicator,
-                              run_timer);
-    simulation.add_observer(deformation);
-    simulation.setup();
-    write_parameters(parameter_text(run.handler()),
-                     p.output_directory,
-                     communicator);
-    simulation.run();
-    write_timing(run_timer, p.output_directory, communicator);
+    run_derived_flow(run,
+                     FlowDomain::shear_box(shear.box, shear.shear_rate, p),
+                     deformation,
+                     communicator,
+                     pcout);
 
     ShearSummary summary     = steady_state(deformation.history);
     summary.capillary_number = capillary_number;

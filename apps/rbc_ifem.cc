@@ -2,19 +2,24 @@
  * rbc-ifem: red blood cells in a pulmonary capillary, simulated with the
  * immersed finite element method, and their carbon monoxide uptake.
  *
- *   rbc-ifem FILE.prm               run the experiment FILE describes
+ *   rbc-ifem FILE.prm [--set "Subsection/Name=value"]...
+ *                                   run the experiment FILE describes
  *   rbc-ifem --print-parameters     every parameter with its documentation
  *   rbc-ifem --list-experiments     the experiments, one per line
+ *   rbc-ifem --version              the version and the git commit
  *   rbc-ifem --help                 usage
  */
 
 #include <rbc_ifem/base/input_error.h>
+#include <rbc_ifem/base/interruption.h>
 #include <rbc_ifem/base/solver_failure.h>
+#include <rbc_ifem/base/version.h>
 #include <rbc_ifem/experiments/registry.h>
 
 #include <deal.II/base/mpi.h>
 
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,20 +32,51 @@ namespace
   {
     out
       << "Usage: rbc-ifem FILE.prm            run the experiment in FILE.prm\n"
+         "       rbc-ifem FILE.prm --set \"Subsection/Name=value\" ...\n"
+         "                                    the same with parameters "
+         "changed (several --set\n"
+         "                                    allowed, checked like the "
+         "file, kept in parameters.prm)\n"
          "       mpirun -np N rbc-ifem FILE.prm  the same on N MPI ranks\n"
          "       rbc-ifem --print-parameters  print every parameter, "
-         "documented, as a valid .prm\n"
+         "documented, with its allowed\n"
+         "                                    values, as a valid .prm\n"
          "       rbc-ifem --list-experiments  the names the parameter "
          "Experiment takes, one per line\n"
+         "       rbc-ifem --version           the version and the git commit "
+         "it was built from\n"
          "       rbc-ifem --help              this text\n"
          "Ready experiments are in prm/; the documentation is in doc/.\n";
   }
 
+  /// The file and the --set changes of a run's command line.
+  struct RunArguments
+  {
+    std::string              filename;
+    std::vector<std::string> changes;
+  };
+
+  /// FILE.prm [--set "Subsection/Name=value"]...; nothing if not of that form.
+  std::optional<RunArguments>
+  run_arguments(const std::vector<std::string> &arguments)
+  {
+    if (arguments.empty() || arguments[0].rfind("-", 0) == 0)
+      return {};
+    RunArguments run{arguments[0], {}};
+    for (std::size_t i = 1; i < arguments.size(); i += 2)
+      {
+        if (arguments[i] != "--set" || i + 1 == arguments.size())
+          return {};
+        run.changes.push_back(arguments[i + 1]);
+      }
+    return run;
+  }
+
   void
-  run(const std::string &filename, const MPI_Comm communicator)
+  run(const RunArguments &arguments, const MPI_Comm communicator)
   {
     RunParameters parameters;
-    parameters.read(filename);
+    parameters.read(arguments.filename, arguments.changes);
     parameters.create_experiment(communicator)->run();
   }
 } // namespace
@@ -66,6 +102,12 @@ main(int argc, char *argv[])
         RunParameters().print(std::cout);
       return 0;
     }
+  if (arguments.size() == 1 && arguments[0] == "--version")
+    {
+      if (root)
+        std::cout << version_line() << '\n';
+      return 0;
+    }
   if (arguments.size() == 1 && arguments[0] == "--list-experiments")
     {
       if (root)
@@ -73,19 +115,14 @@ main(int argc, char *argv[])
           std::cout << type.name << '\n';
       return 0;
     }
-  if (arguments.size() != 1 || arguments[0].rfind("-", 0) == 0)
+  const std::optional<RunArguments> run_with = run_arguments(arguments);
+  if (!run_with)
     {
       if (root)
         {
-          if (arguments.empty())
-            {
-              std::cerr << "rbc-ifem: no parameter file given; these are the "
-                           "parameters and their defaults:\n\n";
-              RunParameters().print(std::cerr);
-              std::cerr << '\n';
-            }
-          else
-            std::cerr << "rbc-ifem: cannot understand the arguments given.\n";
+          std::cerr << (arguments.empty() ?
+                          "rbc-ifem: no parameter file given.\n" :
+                          "rbc-ifem: cannot understand the arguments given.\n");
           print_usage(std::cerr);
         }
       return 1;
@@ -93,13 +130,19 @@ main(int argc, char *argv[])
 
   try
     {
-      run(arguments[0], communicator);
+      run(*run_with, communicator);
     }
   catch (const InputError &e)
     {
       if (root)
         std::cerr << "rbc-ifem: error: " << e.what() << std::endl;
       return 1;
+    }
+  catch (const RunInterrupted &e)
+    {
+      if (root)
+        std::cerr << "rbc-ifem: interrupted: " << e.what() << std::endl;
+      return 128 + e.signal;
     }
   catch (const SolverFailure &e)
     {

@@ -42,7 +42,6 @@ namespace rbc_ifem
     layout.validate();
     layout_study.validate();
     fluid.validate();
-    time.validate();
     membrane.validate();
     immersed.validate();
     interactions.validate(cells.diameter,

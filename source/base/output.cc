@@ -5,8 +5,10 @@
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/numerics/data_out.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <map>
 #include <memory>
 #include <set>
@@ -22,6 +24,100 @@ namespace rbc_ifem
     flags.compression_level = DataOutBase::VtkFlags::best_speed;
     return flags;
   }
+
+  FieldData
+  frame_field_data(const double time,
+                   const double frame_velocity,
+                   const double frame_offset)
+  {
+    return {{"TIME", time},
+            {"FRAME_VELOCITY", frame_velocity},
+            {"FRAME_OFFSET", frame_offset}};
+  }
+
+  namespace
+  {
+    /// The VTU text @p data_out writes, with @p field_data as the
+    /// <FieldData> of its grid (deal.II writes none unless asked for TIME
+    /// or CYCLE through its flags, which we leave unset).
+    template <int dim, int spacedim>
+    std::string
+    vtu_text(const DataOutInterface<dim, spacedim> &data_out,
+             const FieldData                       &field_data)
+    {
+      std::ostringstream vtu;
+      data_out.write_vtu(vtu);
+      std::string       text = vtu.str();
+      const std::string grid = "<UnstructuredGrid>";
+      const std::size_t at   = text.find(grid);
+      if (field_data.empty() || at == std::string::npos)
+        return text;
+      std::ostringstream data;
+      data << std::setprecision(12) << "\n<FieldData>\n";
+      for (const auto &[name, value] : field_data)
+        data << "  <DataArray type=\"Float64\" Name=\"" << name
+             << "\" NumberOfTuples=\"1\" format=\"ascii\">" << value
+             << "</DataArray>\n";
+      data << "</FieldData>";
+      return text.insert(at + grid.size(), data.str());
+    }
+  } // namespace
+
+  template <int dim, int spacedim>
+  void
+  write_vtu(const DataOutInterface<dim, spacedim> &data_out,
+            const std::string                     &path,
+            const FieldData                       &field_data)
+  {
+    const std::string text = vtu_text(data_out, field_data);
+    write_file_atomically(path, [&](std::ostream &out) { out << text; });
+  }
+
+  template <int dim, int spacedim>
+  std::string
+  write_vtu_pieces(const DataOutInterface<dim, spacedim> &data_out,
+                   const std::string                     &directory,
+                   const std::string                     &name,
+                   const unsigned int                     counter,
+                   const MPI_Comm                         communicator,
+                   const FieldData                       &field_data)
+  {
+    const std::string stem  = name + "_" + Utilities::int_to_string(counter, 4);
+    const auto        piece = [&](const unsigned int rank) {
+      return stem + "." + Utilities::int_to_string(rank) + ".vtu";
+    };
+    const unsigned int rank = Utilities::MPI::this_mpi_process(communicator);
+    write_vtu(data_out, directory + "/" + piece(rank), field_data);
+    if (rank == 0)
+      {
+        std::vector<std::string> pieces;
+        for (unsigned int r = 0;
+             r < Utilities::MPI::n_mpi_processes(communicator);
+             ++r)
+          pieces.push_back(piece(r));
+        write_file_atomically(directory + "/" + stem + ".pvtu",
+                              [&](std::ostream &out) {
+                                data_out.write_pvtu_record(out, pieces);
+                              });
+      }
+    return stem + ".pvtu";
+  }
+
+  template void
+  write_vtu(const DataOutInterface<2, 3> &,
+            const std::string &,
+            const FieldData &);
+  template void
+  write_vtu(const DataOutInterface<3, 3> &,
+            const std::string &,
+            const FieldData &);
+  template std::string
+  write_vtu_pieces(const DataOutInterface<3, 3> &,
+                   const std::string &,
+                   const std::string &,
+                   const unsigned int,
+                   const MPI_Comm,
+                   const FieldData &);
 
   void
   write_pvd(const std::string                                 &directory,
@@ -107,14 +203,6 @@ namespace rbc_ifem
     return list;
   }
 
-  std::string
-  parameter_text(const ParameterHandler &prm)
-  {
-    std::ostringstream text;
-    prm.print_parameters(text, ParameterHandler::PRM);
-    return text.str();
-  }
-
   void
   write_parameters(const std::string &text,
                    const std::string &directory,
@@ -190,8 +278,8 @@ namespace rbc_ifem
     data_out.add_data_vector(owner, "rank", DataOut<3>::type_cell_data);
     // Curved cells, so the circles look like circles in ParaView.
     data_out.build_patches(MappingQ<3>(2), 2, DataOut<3>::curved_inner_cells);
-    const std::string pvtu = data_out.write_vtu_with_pvtu_record(
-      directory + "/", name, 0, communicator, 4);
+    const std::string pvtu =
+      write_vtu_pieces(data_out, directory, name, 0, communicator);
 
     // The boundary: one piece per rank, joined by a pvtu record on rank 0.
     const unsigned int rank    = Utilities::MPI::this_mpi_process(communicator);
@@ -234,7 +322,8 @@ namespace rbc_ifem
     const std::string                                        &directory,
     const std::string                                        &name,
     const MPI_Comm                                            communicator,
-    const std::function<void(unsigned int, DataOut<2, 3> &)> &add_fields)
+    const std::function<void(unsigned int, DataOut<2, 3> &)> &add_fields,
+    const FieldData                                          &field_data)
   {
     const std::string file = name + ".vtu";
     if (Utilities::MPI::this_mpi_process(communicator) != 0 || surfaces.empty())
@@ -263,9 +352,35 @@ namespace rbc_ifem
       }
     DataOut<2, 3> &all = *outputs[0];
     all.set_flags(fast_vtk_flags());
-    write_file_atomically(directory + "/" + file,
-                          [&](std::ostream &out) { all.write_vtu(out); });
+    write_vtu(all, directory + "/" + file, field_data);
     return file;
+  }
+
+  std::string
+  duration_text(const double seconds)
+  {
+    std::ostringstream text;
+    const long         whole = std::lround(seconds);
+    if (seconds < 60.)
+      text << std::setprecision(seconds < 10. ? 2 : 3) << seconds << " s";
+    else if (whole < 3600)
+      text << whole / 60 << " min " << std::setw(2) << std::setfill('0')
+           << whole % 60 << " s";
+    else
+      text << whole / 3600 << " h " << std::setw(2) << std::setfill('0')
+           << whole % 3600 / 60 << " min";
+    return text.str();
+  }
+
+  std::string
+  time_left_text(const double       elapsed,
+                 const unsigned int done,
+                 const unsigned int left)
+  {
+    std::string text = "[wall " + duration_text(elapsed);
+    if (done > 0)
+      text += ", about " + duration_text(elapsed / done * left) + " left";
+    return text + "]";
   }
 
   double

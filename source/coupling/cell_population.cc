@@ -190,17 +190,16 @@ namespace rbc_ifem
   std::vector<std::string>
   CellPopulation::write_vtu(const std::string &directory,
                             const std::string &name,
-                            const unsigned int counter) const
+                            const unsigned int counter,
+                            const FieldData   &field_data) const
   {
     std::vector<std::string> files;
     for (unsigned int c = 0; c < size(); ++c)
       {
         const std::string file = name + "_" + std::to_string(c) + "_" +
                                  Utilities::int_to_string(counter, 4);
-        cell_membranes[c]->write_vtu(x[c],
-                                     directory,
-                                     file,
-                                     {{"force", forces[c]}});
+        cell_membranes[c]->write_vtu(
+          x[c], directory, file, {{"force", forces[c]}}, field_data);
         files.push_back(file + ".vtu");
       }
     return files;

@@ -238,6 +238,14 @@ namespace rbc_ifem
 
   CODiffusion::~CODiffusion() = default;
 
+  MembranesFinerThanMesh::MembranesFinerThanMesh(
+    const double membrane_cell_size,
+    const double volume_cell_size)
+    : std::runtime_error("membrane cells finer than the diffusion mesh")
+    , membrane_cell_size(membrane_cell_size)
+    , volume_cell_size(volume_cell_size)
+  {}
+
   void
   CODiffusion::setup(const parallel::shared::Triangulation<3>       &mesh,
                      const std::vector<const Triangulation<2, 3> *> &membranes,
@@ -389,17 +397,7 @@ namespace rbc_ifem
     volume_cell_size /= coupling->points.size();
     if (volume_cell_size > 1.4 * membrane_cell_size)
       {
-        std::ostringstream sizes;
-        sizes << std::setprecision(2) << "membrane cells of "
-              << membrane_cell_size << " µm in diffusion mesh cells of "
-              << volume_cell_size << " µm";
-        throw InputError(
-          "Cells/Surface refinements",
-          sizes.str(),
-          "the diffusion mesh around the membranes must be about as fine "
-          "as the membranes or finer (the multiplier's inf-sup condition); "
-          "raise Mesh/Diffusion band refinements or lower Cells/Surface "
-          "refinements.");
+        throw MembranesFinerThanMesh(membrane_cell_size, volume_cell_size);
       }
 
     constraint_scale =
@@ -772,7 +770,8 @@ namespace rbc_ifem
   CODiffusion::OutputFiles
   CODiffusion::write_output(const std::string &directory,
                             const std::string &name,
-                            const unsigned int counter) const
+                            const unsigned int counter,
+                            const FieldData   &field_data) const
   {
     TimerOutput::Scope scope(timer, "diffusion: output");
     IndexSet           relevant_dofs;
@@ -792,8 +791,8 @@ namespace rbc_ifem
                              DataOut<3>::type_cell_data);
     data_out.build_patches(mapping, fe.degree);
     OutputFiles files;
-    files.pressure = data_out.write_vtu_with_pvtu_record(
-      directory + "/", name, counter, communicator, 4);
+    files.pressure = write_vtu_pieces(
+      data_out, directory, name, counter, communicator, field_data);
 
     std::vector<Vector<double>> flux(membranes.size());
     for (unsigned int m = 0; m < membranes.size(); ++m)
@@ -816,7 +815,8 @@ namespace rbc_ifem
         membrane_out.add_data_vector(*multiplier_dof_handlers[m],
                                      flux[m],
                                      flux_vector);
-      });
+      },
+      field_data);
     return files;
   }
 } // namespace rbc_ifem

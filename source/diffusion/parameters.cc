@@ -22,33 +22,38 @@ namespace rbc_ifem
     const auto add_material = [&](const std::string &name,
                                   double            &diffusivity,
                                   double            &solubility,
-                                  const std::string &note) {
+                                  const std::string &where,
+                                  const std::string &solubility_source) {
       add_parameter(prm,
                     name + " diffusivity",
                     diffusivity,
-                    "CO diffusion coefficient D in the " + note + " [µm²/s].",
+                    "CO diffusion coefficient D in the " + where +
+                      " [µm²/s] (the paper's Table 2).",
                     Patterns::Double(0.));
       add_parameter(prm,
                     name + " solubility",
                     solubility,
-                    "CO solubility α in the " + note +
-                      " [Torr⁻¹, volume of CO (STPD) per volume per Torr].",
+                    "CO solubility α in the " + where +
+                      " [Torr⁻¹: volume of CO (STPD) per volume per Torr] (" +
+                      solubility_source + ").",
                     Patterns::Double(0.));
     };
     add_material("Plasma",
                  plasma_diffusivity,
                  plasma_solubility,
-                 "plasma (lumen; paper, Table 2)");
+                 "plasma (the lumen)",
+                 "the paper's Table 2");
     add_material("Wall",
                  wall_diffusivity,
                  wall_solubility,
-                 "vessel wall tissue (paper, Table 2)");
+                 "vessel wall tissue",
+                 "the paper's Table 2");
     add_material("Gas",
                  gas_diffusivity,
                  gas_solubility,
-                 "alveolar gas. D from the paper's Table 2; α of an ideal "
-                 "gas at 37 °C in the same units: (1/760) (273.15/310.15) "
-                 "= 1.159e-3");
+                 "alveolar gas",
+                 "an ideal gas at 37 °C: (1/760) (273.15/310.15) = "
+                 "1.159e-3");
     add_parameter(prm,
                   "Finite element degree",
                   degree,
@@ -67,7 +72,9 @@ namespace rbc_ifem
                   "Linear solver tolerance",
                   linear_tolerance,
                   "FGMRES stops when the residual has fallen by this "
-                  "factor.",
+                  "factor from its first value in the solve. (Fluid/Linear "
+                  "solver tolerance is relative to the largest residual of "
+                  "the whole run instead.)",
                   Patterns::Double(0.));
     add_parameter(prm,
                   "Max linear iterations",

@@ -1,4 +1,5 @@
 #include <rbc_ifem/base/csv.h>
+#include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/output.h>
 #include <rbc_ifem/diffusion/co_diffusion.h>
 #include <rbc_ifem/diffusion/uptake.h>
@@ -6,8 +7,112 @@
 
 #include <deal.II/distributed/shared_tria.h>
 
+#include <iomanip>
+#include <memory>
+#include <sstream>
+
 namespace rbc_ifem
 {
+  namespace
+  {
+    /// The diffusion mesh of the capillary of @p geometry, refined
+    /// @p band_refinements times within Mesh/Band width of the vertices of
+    /// @p surfaces.
+    void
+    make_uptake_mesh(parallel::shared::Triangulation<3> &mesh,
+                     const GeometryParameters           &geometry,
+                     const MeshParameters               &mesh_parameters,
+                     const std::vector<const Triangulation<2, 3> *> &surfaces,
+                     const unsigned int band_refinements,
+                     TimerOutput       &timer)
+    {
+      TimerOutput::Scope    scope(timer, "diffusion mesh");
+      std::vector<Point<3>> band_points;
+      for (const auto *surface : surfaces)
+        band_points.insert(band_points.end(),
+                           surface->get_vertices().begin(),
+                           surface->get_vertices().end());
+      create_diffusion_mesh(mesh,
+                            geometry,
+                            mesh_parameters.diffusion_global_refinements);
+      refine_near_points(mesh,
+                         points_in_segment(band_points, geometry.period()),
+                         mesh_parameters.band_width,
+                         band_refinements);
+    }
+
+    /// The CO diffusion problem of @p d, set up on @p mesh with the
+    /// membranes @p surfaces: everything before the assembly. A mesh too
+    /// coarse for the membranes is an InputError naming @p band_refinements,
+    /// the refinements of the mesh around them.
+    std::unique_ptr<CODiffusion>
+    set_up_diffusion(const parallel::shared::Triangulation<3>       &mesh,
+                     const GeometryParameters                       &geometry,
+                     const DiffusionParameters                      &d,
+                     const std::vector<const Triangulation<2, 3> *> &surfaces,
+                     const MappingQ<2, 3>                           &mapping,
+                     const unsigned int band_refinements,
+                     const MPI_Comm     communicator,
+                     TimerOutput       &timer)
+    {
+      auto diffusion = std::make_unique<CODiffusion>(
+        d,
+        [&d](const unsigned int id) { return d.permeability(id); },
+        DiffusionBoundary::alveolar_surface,
+        communicator,
+        timer,
+        geometry.period());
+      try
+        {
+          diffusion->setup(mesh, surfaces, mapping);
+        }
+      catch (const MembranesFinerThanMesh &e)
+        {
+          std::ostringstream sizes;
+          sizes << std::setprecision(2) << "the membrane cells ("
+                << e.membrane_cell_size
+                << " µm) are finer than the diffusion mesh cells around "
+                   "them ("
+                << e.volume_cell_size << " µm)";
+          throw InputError("Mesh/Diffusion band refinements",
+                           std::to_string(band_refinements),
+                           sizes.str() +
+                             "; the diffusion mesh there must be about as "
+                             "fine as the membranes or finer (the "
+                             "multiplier's inf-sup condition): raise it, or "
+                             "lower Cells/Surface refinements.");
+        }
+      return diffusion;
+    }
+  } // namespace
+
+  void
+  check_uptake_meshes(const GeometryParameters  &geometry,
+                      const MeshParameters      &mesh_parameters,
+                      const DiffusionParameters &d,
+                      const std::vector<const Triangulation<2, 3> *> &surfaces,
+                      const MappingQ<2, 3>                           &mapping,
+                      const unsigned int band_refinements,
+                      const MPI_Comm     communicator,
+                      TimerOutput       &timer)
+  {
+    parallel::shared::Triangulation<3> mesh(
+      communicator,
+      Triangulation<3>::none,
+      false,
+      parallel::shared::Triangulation<3>::partition_metis);
+    make_uptake_mesh(
+      mesh, geometry, mesh_parameters, surfaces, band_refinements, timer);
+    set_up_diffusion(mesh,
+                     geometry,
+                     d,
+                     surfaces,
+                     mapping,
+                     band_refinements,
+                     communicator,
+                     timer);
+  }
+
   Uptake
   solve_uptake(const GeometryParameters                       &geometry,
                const MeshParameters                           &mesh_parameters,
@@ -25,30 +130,17 @@ namespace rbc_ifem
       Triangulation<3>::none,
       false,
       parallel::shared::Triangulation<3>::partition_metis);
-    {
-      TimerOutput::Scope    scope(timer, "diffusion mesh");
-      std::vector<Point<3>> band_points;
-      for (const auto *surface : surfaces)
-        band_points.insert(band_points.end(),
-                           surface->get_vertices().begin(),
-                           surface->get_vertices().end());
-      create_diffusion_mesh(mesh,
-                            geometry,
-                            mesh_parameters.diffusion_global_refinements);
-      refine_near_points(mesh,
-                         points_in_segment(band_points, geometry.period()),
-                         mesh_parameters.band_width,
-                         band_refinements);
-    }
-
-    CODiffusion diffusion(
-      d,
-      [&d](const unsigned int id) { return d.permeability(id); },
-      DiffusionBoundary::alveolar_surface,
-      communicator,
-      timer,
-      geometry.period());
-    diffusion.setup(mesh, surfaces, mapping);
+    make_uptake_mesh(
+      mesh, geometry, mesh_parameters, surfaces, band_refinements, timer);
+    const auto   diffusion_problem = set_up_diffusion(mesh,
+                                                    geometry,
+                                                    d,
+                                                    surfaces,
+                                                    mapping,
+                                                    band_refinements,
+                                                    communicator,
+                                                    timer);
+    CODiffusion &diffusion         = *diffusion_problem;
     diffusion.assemble();
     diffusion.solve();
     if (write_fields)
@@ -90,10 +182,11 @@ namespace rbc_ifem
                       const std::string &directory,
                       const double       time,
                       const unsigned int counter,
-                      const MPI_Comm     communicator)
+                      const MPI_Comm     communicator,
+                      const FieldData   &field_data)
   {
     const CODiffusion::OutputFiles files =
-      diffusion.write_output(directory, "diffusion", counter);
+      diffusion.write_output(directory, "diffusion", counter, field_data);
     pressure.emplace_back(time, files.pressure);
     membranes.emplace_back(time, files.membranes);
     write_pvd(directory, "diffusion", pressure, communicator);

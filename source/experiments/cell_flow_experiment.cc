@@ -26,8 +26,12 @@ namespace rbc_ifem
     pcout << "  with immersed cells ("
           << name_of(parameters.fluid.model, fluid_model_names()) << ')'
           << std::endl;
-    simulation = std::make_unique<IFEMSimulation>(
-      parameters, FlowDomain::capillary(parameters), communicator, timer);
+    simulation =
+      std::make_unique<IFEMSimulation>(parameters,
+                                       parameter_file_text,
+                                       FlowDomain::capillary(parameters),
+                                       communicator,
+                                       timer);
     simulation->setup();
   }
 

@@ -1,4 +1,5 @@
 #include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/parameter_text.h>
 #include <rbc_ifem/experiments/derived_flow_run.h>
 #include <rbc_ifem/ifem/ifem_simulation.h>
 
@@ -15,16 +16,15 @@ namespace rbc_ifem
   {
     const Parameters &p = run.model();
     // The run's own sections, on rank 0's clock like the experiment's.
-    TimerOutput    timer(MPI_COMM_SELF,
+    TimerOutput       timer(MPI_COMM_SELF,
                       pcout,
                       TimerOutput::never,
                       TimerOutput::wall_times);
-    IFEMSimulation simulation(p, domain, communicator, timer);
+    const std::string text = parameter_text(run.handler());
+    IFEMSimulation    simulation(p, text, domain, communicator, timer);
     simulation.add_observer(observer);
     simulation.setup();
-    write_parameters(parameter_text(run.handler()),
-                     p.output_directory,
-                     communicator);
+    write_parameters(text, p.output_directory, communicator);
     simulation.run();
     write_timing(timer, p.output_directory, communicator);
   }

@@ -1,4 +1,6 @@
 #include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/parameter_text.h>
+#include <rbc_ifem/base/version.h>
 #include <rbc_ifem/experiments/experiment.h>
 
 #include <iostream>
@@ -27,8 +29,8 @@ namespace rbc_ifem
   Experiment::run()
   {
     pcout << "rbc-ifem: experiment '" << name << "' on "
-          << Utilities::MPI::n_mpi_processes(communicator) << " rank(s)"
-          << std::endl;
+          << Utilities::MPI::n_mpi_processes(communicator) << " rank(s), "
+          << version_line() << std::endl;
     setup();
 
     const std::string &directory = parameters.output_directory;

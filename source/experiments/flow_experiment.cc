@@ -24,7 +24,7 @@ namespace rbc_ifem
     , fluid(triangulation,
             parameters.fluid,
             FlowDrive::capillary(parameters.fluid, parameters.geometry),
-            parameters.time.time_step,
+            parameters.time.plasma_time_step(),
             timer)
   {}
 
@@ -57,11 +57,14 @@ namespace rbc_ifem
     const bool root = Utilities::MPI::this_mpi_process(communicator) == 0;
     CsvTable   table("time,flow_rate,pressure_drop,max_velocity,"
                      "divergence_l2,frame_velocity,newton_iterations,"
-                     "linear_iterations");
+                     "linear_iterations,lab_flow_rate");
     std::vector<std::pair<double, std::string>> fields;
-    for (unsigned int step = 1; step <= parameters.time.n_steps; ++step)
+    const unsigned int n_steps = parameters.time.n_steps;
+    const double       dt      = parameters.time.plasma_time_step();
+    Timer              clock;
+    for (unsigned int step = 1; step <= n_steps; ++step)
       {
-        const double time = step * parameters.time.time_step;
+        const double time = step * dt;
         StepReport   report;
         try
           {
@@ -82,16 +85,19 @@ namespace rbc_ifem
                   m.divergence_l2,
                   parameters.fluid.frame_velocity,
                   report.newton_iterations,
-                  report.linear_iterations);
-        pcout << "  step " << step << ", t = " << time
-              << " s: " << report.newton_iterations << " Newton, "
-              << report.linear_iterations << " FGMRES iterations, residual "
-              << report.residuals.front() << " -> " << report.final_residual
-              << "; flow " << m.flow_rate << " µm³/s, Δp " << m.pressure_drop
-              << " pN/µm², |∇·v| " << m.divergence_l2 << std::endl;
+                  report.linear_iterations,
+                  m.lab_flow_rate);
+        pcout << "  step " << step << " of " << n_steps << ", t = " << time
+              << " of " << n_steps * dt << " s: " << report.newton_iterations
+              << " Newton, " << report.linear_iterations
+              << " FGMRES iterations, residual " << report.residuals.front()
+              << " -> " << report.final_residual << "; flow " << m.flow_rate
+              << " µm³/s, Δp " << m.pressure_drop << " Pa, |∇·v| "
+              << m.divergence_l2 << "  "
+              << time_left_text(clock.wall_time(), step, n_steps - step)
+              << std::endl;
 
-        if (step % parameters.time.output_interval == 0 ||
-            step == parameters.time.n_steps)
+        if (step % parameters.time.output_interval == 0 || step == n_steps)
           {
             fields.emplace_back(time, fluid.write_vtu(directory, step));
             write_pvd(directory, "flow", fields, communicator);

@@ -1,4 +1,5 @@
 #include <rbc_ifem/base/input_error.h>
+#include <rbc_ifem/base/output.h>
 #include <rbc_ifem/base/parameter_tools.h>
 #include <rbc_ifem/experiments/derived_flow_run.h>
 #include <rbc_ifem/experiments/flowing_layouts_experiment.h>
@@ -34,7 +35,6 @@ namespace rbc_ifem
   void
   FlowingLayoutsParameters::validate(const Parameters &parameters) const
   {
-    const double duration = parameters.time.n_steps * parameters.time.time_step;
     if (parameters.immersed.diffusion_interval == 0 ||
         parameters.immersed.diffusion_interval > parameters.time.n_steps)
       throw InputError("Immersed cells/Diffusion interval",
@@ -42,6 +42,13 @@ namespace rbc_ifem
                        "the flowing layouts track DM: solve it every k steps, "
                        "1 <= k <= Time/Number of steps = " +
                          std::to_string(parameters.time.n_steps) + ".");
+    if (parameters.time.automatic_time_step())
+      throw InputError("Time/Time step",
+                       "auto",
+                       "the flowing layouts compare runs of the same "
+                       "duration: give the step in seconds (the explicit-"
+                       "coupling estimate of a flow run is a guide).");
+    const double duration = parameters.time.n_steps * parameters.time.time_step;
     if (!(steady_window > 0. && steady_window < duration))
       throw InputError("Flowing layouts/Steady window",
                        to_text(steady_window),
@@ -299,8 +306,8 @@ namespace rbc_ifem
               << 100. * (result.steady_dm / result.static_dm - 1.)
               << std::noshowpos << " %, spread " << 100. * result.steady_spread
               << " % over the last " << own.steady_window
-              << " s) µm³/(s Torr); " << elapsed << " s so far, about "
-              << elapsed / (r + 1) * (runs.size() - r - 1) << " s left"
+              << " s) µm³/(s Torr)  "
+              << time_left_text(elapsed, r + 1, runs.size() - r - 1)
               << std::endl;
       }
   }

@@ -1,5 +1,6 @@
 #include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/parameter_text.h>
 #include <rbc_ifem/base/parameter_tools.h>
 #include <rbc_ifem/experiments/cell_flow_experiment.h>
 #include <rbc_ifem/experiments/diffusion_experiment.h>
@@ -163,7 +164,8 @@ namespace rbc_ifem
   }
 
   void
-  RunParameters::read(const std::string &filename)
+  RunParameters::read(const std::string              &filename,
+                      const std::vector<std::string> &changes)
   {
     if (!std::filesystem::is_regular_file(filename) || !std::ifstream(filename))
       throw InputError("cannot read the parameter file '" + filename +
@@ -183,7 +185,50 @@ namespace rbc_ifem
                          "\nRun 'rbc-ifem --print-parameters' for every "
                          "parameter, its allowed values and its default.");
       }
+    for (const std::string &change : changes)
+      set(change);
     validate();
+  }
+
+  void
+  RunParameters::set(const std::string &change)
+  {
+    const std::string option = "--set \"" + change + "\"";
+    const std::size_t equals = change.find('=');
+    if (equals == std::string::npos)
+      throw InputError(option + ": expected \"Subsection/Name=value\", such "
+                                "as \"Time/Number of steps=10\".");
+    const std::string path     = Utilities::trim(change.substr(0, equals));
+    const std::string value    = Utilities::trim(change.substr(equals + 1));
+    const auto        patterns = parameter_patterns(prm);
+    const auto        pattern  = patterns.find(path);
+    if (pattern == patterns.end())
+      throw InputError(option + ": there is no parameter '" + path +
+                       "'. Run 'rbc-ifem --print-parameters' for every "
+                       "parameter, as Subsection/Name.");
+
+    std::vector<std::string> names = Utilities::split_string_list(path, '/');
+    const std::string        entry = names.back();
+    names.pop_back();
+    for (const std::string &subsection : names)
+      prm.enter_subsection(subsection);
+    bool matches = true;
+    try
+      {
+        // set() checks the value against the pattern, as parsing does.
+        prm.set(entry, value);
+      }
+    catch (const ExceptionBase &)
+      {
+        matches = false;
+      }
+    for (std::size_t i = 0; i < names.size(); ++i)
+      prm.leave_subsection();
+    if (!matches)
+      throw InputError(path,
+                       value,
+                       allowed_values(pattern->second) + " (from " + option +
+                         ").");
   }
 
   void

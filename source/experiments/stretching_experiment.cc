@@ -212,7 +212,12 @@ namespace rbc_ifem
       TimerOutput::Scope scope(timer, "output");
       for (unsigned int k = 0; k < shapes.size(); ++k)
         {
-          membrane->write_vtu(equilibria[k], directory, shapes[k].second);
+          // The .pvd's "timestep" is the bead force; each file says so.
+          membrane->write_vtu(equilibria[k],
+                              directory,
+                              shapes[k].second,
+                              {},
+                              {{"BEAD_FORCE", shapes[k].first}});
           shapes[k].second += ".vtu";
         }
     }

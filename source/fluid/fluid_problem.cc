@@ -13,6 +13,7 @@
 #include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/data_postprocessor.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <cmath>
@@ -132,6 +133,31 @@ namespace rbc_ifem
     private:
       const Function<3> &velocity;
       const double       frame_velocity, scale;
+    };
+
+    /// The field "lab_velocity" of the output: the velocity v the frame
+    /// sees plus the frame's own, V e_x, i.e. the plasma's velocity in the
+    /// laboratory (the capillary wall at rest).
+    class LabVelocity : public DataPostprocessorVector<3>
+    {
+    public:
+      explicit LabVelocity(const double frame_velocity)
+        : DataPostprocessorVector<3>("lab_velocity", update_values)
+        , frame_velocity(frame_velocity)
+      {}
+
+      void
+      evaluate_vector_field(const DataPostprocessorInputs::Vector<3> &inputs,
+                            std::vector<Vector<double>> &lab) const override
+      {
+        for (unsigned int q = 0; q < inputs.solution_values.size(); ++q)
+          for (unsigned int d = 0; d < 3; ++d)
+            lab[q][d] =
+              inputs.solution_values[q][d] + (d == 0 ? frame_velocity : 0.);
+      }
+
+    private:
+      const double frame_velocity;
     };
   } // namespace
 
@@ -702,8 +728,12 @@ namespace rbc_ifem
         }
     m.divergence_l2 =
       std::sqrt(Utilities::MPI::sum(divergence_squared, communicator));
-    m.max_velocity  = Utilities::MPI::max(m.max_velocity, communicator);
-    m.flow_rate     = Utilities::MPI::sum(m.flow_rate, communicator);
+    m.max_velocity = Utilities::MPI::max(m.max_velocity, communicator);
+    m.flow_rate    = Utilities::MPI::sum(m.flow_rate, communicator);
+    // The outlet's normal is e_x: the frame's motion adds V times its area.
+    m.lab_flow_rate =
+      m.flow_rate +
+      frame_velocity * Utilities::MPI::sum(outlet_area, communicator);
     m.pressure_drop = Utilities::MPI::sum(inlet_pressure, communicator) /
                         Utilities::MPI::sum(inlet_area, communicator) -
                       Utilities::MPI::sum(outlet_pressure, communicator) /
@@ -715,7 +745,8 @@ namespace rbc_ifem
 
   std::string
   FluidProblem::write_vtu(const std::string &directory,
-                          const unsigned int counter) const
+                          const unsigned int counter,
+                          const FieldData   &field_data) const
   {
     TimerOutput::Scope       scope(timer, "fluid: output");
     std::vector<std::string> names(3, "velocity");
@@ -725,16 +756,18 @@ namespace rbc_ifem
                      DataComponentInterpretation::component_is_part_of_vector);
     interpretation.push_back(DataComponentInterpretation::component_is_scalar);
 
-    DataOut<3> data_out;
+    const LabVelocity lab_velocity(frame_velocity);
+    DataOut<3>        data_out;
     data_out.set_flags(fast_vtk_flags());
     data_out.attach_dof_handler(dof_handler);
     data_out.add_data_vector(current,
                              names,
                              DataOut<3>::type_dof_data,
                              interpretation);
+    data_out.add_data_vector(current, lab_velocity);
     data_out.build_patches(mapping, 2);
-    return data_out.write_vtu_with_pvtu_record(
-      directory + "/", "flow", counter, communicator, 4);
+    return write_vtu_pieces(
+      data_out, directory, "flow", counter, communicator, field_data);
   }
 
   const TrilinosWrappers::MPI::BlockVector &

@@ -192,9 +192,11 @@ namespace rbc_ifem
     add_parameter(prm,
                   "Number of cells",
                   n_cells,
-                  "Number of red cells in the segment. At most "
-                  "floor(length / (cell length + Minimum gap)) fit. Not "
-                  "used with Kind = file, whose rows are the cells.",
+                  "Number of red cells N in the segment, for one layout. At "
+                  "most floor(length / (cell length + Minimum gap)) fit. Not "
+                  "used with Kind = file, whose rows are the cells, nor by "
+                  "the studies, which take the list Layout study/Numbers of "
+                  "cells.",
                   Patterns::Integer(0));
     add_parameter(prm,
                   "Seed",
@@ -256,15 +258,19 @@ namespace rbc_ifem
     add_parameter(prm,
                   "Numbers of cells",
                   numbers_of_cells,
-                  "Experiments 'layouts' and 'flowing layouts': the numbers "
-                  "of cells N to place in the segment, each in every kind.",
+                  "Experiments 'layouts' and 'flowing layouts': the list of "
+                  "the numbers of cells N to place in the segment, each in "
+                  "every kind (these experiments do not use Layout/Number "
+                  "of cells).",
                   Patterns::List(Patterns::Integer(1), 1));
     add_parameter(prm,
                   "Random seeds",
                   n_seeds,
-                  "Experiments 'layouts' and 'flowing layouts': random "
-                  "layouts are drawn with seeds Layout/Seed, Layout/Seed + "
-                  "1, ...; layouts.csv reports their mean and spread.",
+                  "Experiments 'layouts' and 'flowing layouts': how many "
+                  "random layouts to draw for each N (a count, not a "
+                  "seed): with the seeds Layout/Seed, Layout/Seed + 1, ..., "
+                  "Layout/Seed + Random seeds - 1; layouts.csv reports "
+                  "their mean and spread.",
                   Patterns::Integer(1));
     prm.leave_subsection();
   }

@@ -1,5 +1,7 @@
 #include <rbc_ifem/base/input_error.h>
+#include <rbc_ifem/base/interruption.h>
 #include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/parameter_text.h>
 #include <rbc_ifem/base/solver_failure.h>
 #include <rbc_ifem/coupling/contact_forces.h>
 #include <rbc_ifem/coupling/membrane_forces.h>
@@ -11,12 +13,14 @@
 
 #include <boost/archive/binary_iarchive.hpp>
 #include <boost/archive/binary_oarchive.hpp>
+#include <boost/crc.hpp>
 #include <boost/serialization/array.hpp>
 #include <boost/serialization/string.hpp>
 #include <boost/serialization/utility.hpp>
 #include <boost/serialization/vector.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -26,15 +30,12 @@ namespace rbc_ifem
 {
   namespace
   {
-    /// Everything in a checkpoint: the run's record, the fluid, the membranes.
+    /// Everything in a checkpoint: the run's parameters and record, the
+    /// fluid, the membranes.
     struct Checkpoint
     {
-      /// Raised whenever what a checkpoint holds changes: a checkpoint of
-      /// another layout is refused by name, not misread.
-      static constexpr unsigned int current_format = 20261202;
-
-      unsigned int                format  = current_format;
       unsigned int                n_ranks = 0;
+      std::string                 parameters; ///< the run's parameters.prm
       RunRecord                   record;
       FluidState                  fluid;
       std::vector<Vector<double>> positions;
@@ -43,20 +44,95 @@ namespace rbc_ifem
       void
       serialize(Archive &archive, const unsigned int)
       {
-        archive &format;
-        if (format != current_format)
-          throw std::runtime_error("checkpoint format " +
-                                   std::to_string(format));
-        archive &n_ranks &record &fluid &positions;
+        archive &n_ranks &parameters &record &fluid &positions;
       }
     };
+
+    /**
+     * The file's first lines: what it is, the format of what follows
+     * (raised whenever what a checkpoint holds changes, so that an old
+     * checkpoint is refused by name, not misread), and the payload's size
+     * and CRC-32, so that a truncated or damaged file is refused.
+     */
+    const std::string  checkpoint_title          = "rbc-ifem checkpoint";
+    constexpr unsigned checkpoint_current_format = 20261203;
+
+    std::uint32_t
+    crc32(const std::string &bytes)
+    {
+      boost::crc_32_type crc;
+      crc.process_bytes(bytes.data(), bytes.size());
+      return crc.checksum();
+    }
+
+    /// The checkpoint file's text: its header lines, then @p payload.
+    std::string
+    checkpoint_file(const std::string &payload)
+    {
+      std::ostringstream file;
+      file << checkpoint_title << "\nformat " << checkpoint_current_format
+           << "\nbytes " << payload.size() << "\ncrc32 " << crc32(payload)
+           << '\n'
+           << payload;
+      return file.str();
+    }
+
+    /**
+     * The payload of the checkpoint file @p path, checked; throws the
+     * reason it cannot be used (not a checkpoint, another format,
+     * truncated, damaged) as a std::runtime_error.
+     */
+    std::string
+    checkpoint_payload(const std::string &path)
+    {
+      std::ifstream in(path, std::ios::binary);
+      std::string   title, format_word, bytes_word, crc_word;
+      unsigned long format = 0, bytes = 0;
+      std::uint32_t crc = 0;
+      std::getline(in, title);
+      if (title != checkpoint_title)
+        throw std::runtime_error("it is not an rbc-ifem checkpoint");
+      in >> format_word >> format >> bytes_word >> bytes >> crc_word >> crc;
+      in.get();
+      if (!in || format_word != "format" || bytes_word != "bytes" ||
+          crc_word != "crc32")
+        throw std::runtime_error("its header is damaged");
+      if (format != checkpoint_current_format)
+        throw std::runtime_error("it has the format " + std::to_string(format) +
+                                 "; this version of rbc-ifem reads " +
+                                 std::to_string(checkpoint_current_format));
+      std::string payload(bytes, '\0');
+      in.read(payload.data(), bytes);
+      if (static_cast<unsigned long>(in.gcount()) != bytes)
+        throw std::runtime_error(
+          "it is truncated: " + std::to_string(in.gcount()) + " of its " +
+          std::to_string(bytes) + " bytes are there");
+      if (crc32(payload) != crc)
+        throw std::runtime_error(
+          "it is damaged: the checksum of its contents does not match");
+      return payload;
+    }
+
+    /// The parameters a resumed run may change: how long it runs and what
+    /// it reports, not what it computes.
+    bool
+    may_change_on_resume(const std::string &name)
+    {
+      return name == "Output directory" || name == "Time/Number of steps" ||
+             name == "Time/Output interval" ||
+             name == "Immersed cells/Resume" ||
+             name == "Immersed cells/Checkpoint interval" ||
+             name == "Immersed cells/Progress interval";
+    }
   } // namespace
 
-  IFEMSimulation::IFEMSimulation(const Parameters &parameters,
-                                 const FlowDomain &domain,
-                                 const MPI_Comm    communicator,
-                                 TimerOutput      &timer)
+  IFEMSimulation::IFEMSimulation(const Parameters  &parameters,
+                                 const std::string &parameter_file_text,
+                                 const FlowDomain  &domain,
+                                 const MPI_Comm     communicator,
+                                 TimerOutput       &timer)
     : parameters(parameters)
+    , parameter_file_text(parameter_file_text)
     , communicator(communicator)
     , domain(domain)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
@@ -68,7 +144,7 @@ namespace rbc_ifem
     , fluid(triangulation,
             parameters.fluid,
             domain.drive,
-            parameters.time.time_step,
+            parameters.time.plasma_time_step(),
             timer)
     , cells(domain.placements, parameters.cells, parameters.membrane)
   {
@@ -78,7 +154,7 @@ namespace rbc_ifem
     record.flow.set_header(
       "time,flow_rate,pressure_drop,max_velocity,divergence_l2,"
       "frame_velocity,newton_iterations,linear_iterations,held_force_x,"
-      "held_force_y,held_force_z");
+      "held_force_y,held_force_z,lab_flow_rate");
     record.cells.set_header(
       "time,cell,x,y,z,area,volume,axial_length,max_radius,deformation_index,"
       "frame_x,volume_change,area_change,taylor_deformation,inclination,"
@@ -167,10 +243,18 @@ namespace rbc_ifem
       }
     mesh_size = coupling->mesh_size_at_points();
     load.reinit(fluid.owned_partitioning(), communicator);
+    const CouplingTimeStepLimit stable(parameters.fluid.viscosity,
+                                       parameters.membrane,
+                                       cells.point_spacing(),
+                                       mesh_size);
+    time_step = parameters.time.coupled_time_step(stable.limit);
+    fluid.set_time_step(time_step);
 
     pcout << "  fluid mesh: " << triangulation.n_active_cells() << " cells, "
           << fluid.get_dof_handler().n_dofs() << " DoFs" << std::endl;
-    report_startup();
+    report_startup(stable);
+    if (parameters.immersed.diffusion_interval > 0)
+      check_uptake_input();
     if (parameters.immersed.resume)
       {
         read_checkpoint();
@@ -180,15 +264,14 @@ namespace rbc_ifem
   }
 
   void
-  IFEMSimulation::report_startup() const
+  IFEMSimulation::report_startup(const CouplingTimeStepLimit &stable) const
   {
-    const FluidParameters      &f       = parameters.fluid;
-    const MembraneParameters   &m       = parameters.membrane;
-    const double                speed   = domain.velocity_scale;
-    const double                length  = domain.length_scale;
-    const double                spacing = cells.point_spacing();
-    const CouplingTimeStepLimit stable(f.viscosity, m, spacing, mesh_size);
-    const double                stable_step = stable.limit;
+    const FluidParameters    &f           = parameters.fluid;
+    const MembraneParameters &m           = parameters.membrane;
+    const double              speed       = domain.velocity_scale;
+    const double              length      = domain.length_scale;
+    const double              spacing     = cells.point_spacing();
+    const double              stable_step = stable.limit;
 
     pcout << "  cells: " << cells.size() << ", " << cells.n_points()
           << " membrane points, spacing up to " << spacing
@@ -203,11 +286,18 @@ namespace rbc_ifem
           << " s (in-plane " << stable.in_plane << " s, bending "
           << stable.bending
           << " s); runs stay stable below about 0.7 of it (doc/ifem.md); Δt = "
-          << parameters.time.time_step << " s" << std::endl;
-    if (parameters.time.time_step > stable_step)
-      pcout << "  WARNING: Time/Time step = " << parameters.time.time_step
-            << " s exceeds the explicit-coupling estimate " << stable_step
-            << " s; the run may become unstable." << std::endl;
+          << time_step << " s ("
+          << (parameters.time.automatic_time_step() ? "Time step = auto, " : "")
+          << time_step / stable_step << " of the estimate)" << std::endl;
+    // Measured (doc/ifem.md): 0.71 of the estimate stable over the default
+    // run, 0.83 diverged after 112 steps.
+    if (time_step > 0.75 * stable_step)
+      pcout << "  WARNING: Time/Time step = " << time_step << " s is "
+            << time_step / stable_step << " of the explicit-coupling estimate "
+            << stable_step
+            << " s; runs stay stable below about 0.7 of it: set it to at "
+               "most "
+            << 0.7 * stable_step << " s, or to auto." << std::endl;
     const InteractionParameters &contact = parameters.interactions;
     if (cells.size() > 1 && contact.repulsion_pressure > 0. &&
         contact.repulsion_range < spacing)
@@ -218,19 +308,21 @@ namespace rbc_ifem
                "another. Raise the range or Cells/Surface refinements."
             << std::endl;
     if (spacing > 0.5 * mesh_size)
-      pcout
-        << "  WARNING: the membrane point spacing " << spacing
-        << " µm exceeds half the fluid mesh size at the cells, h/2 = "
-        << 0.5 * mesh_size
-        << " µm (the paper's rule): raise Cells/Surface refinements or lower "
-           "Mesh/Fluid band refinements."
-        << std::endl;
+      pcout << "  WARNING: the membrane point spacing " << spacing
+            << " µm exceeds half the fluid mesh size at the cells, h/2 = "
+            << 0.5 * mesh_size
+            << " µm (the paper's rule): raise Cells/Surface refinements (which "
+               "lowers the explicit-coupling estimate, so set Time/Time step = "
+               "auto or below 0.7 of the new one, and may need Mesh/Diffusion "
+               "band refinements raised: the run says so before it starts) or "
+               "lower Mesh/Fluid band refinements."
+            << std::endl;
   }
 
   StepReport
   IFEMSimulation::advance()
   {
-    const double                      dt        = parameters.time.time_step;
+    const double                      dt        = time_step;
     const std::vector<Vector<double>> last_good = cells.positions();
 
     std::vector<Tensor<1, 3>> forces;
@@ -308,6 +400,24 @@ namespace rbc_ifem
     return report;
   }
 
+  void
+  IFEMSimulation::check_uptake_input() const
+  {
+    TimerOutput::Scope scope(timer, "diffusion: input check");
+    const auto         surfaces = cells.current_surfaces();
+    std::vector<const Triangulation<2, 3> *> pointers;
+    for (const auto &surface : surfaces)
+      pointers.push_back(surface.get());
+    check_uptake_meshes(parameters.geometry,
+                        parameters.mesh,
+                        parameters.diffusion,
+                        pointers,
+                        cells.surface_mapping(),
+                        parameters.mesh.diffusion_band_refinements,
+                        communicator,
+                        timer);
+  }
+
   double
   IFEMSimulation::solve_uptake(const unsigned int counter)
   {
@@ -330,9 +440,11 @@ namespace rbc_ifem
                                                           directory,
                                                           record.time,
                                                           counter,
-                                                          communicator);
+                                                          communicator,
+                                                          frame_data());
                              });
     record.dm.add_row(dm_row(record.time, uptake));
+    record.dm_history.emplace_back(record.time, uptake.dm_total);
     if (!observers.empty())
       {
         const double gap = smallest_cell_gap();
@@ -357,7 +469,8 @@ namespace rbc_ifem
                     report.linear_iterations,
                     held[0],
                     held[1],
-                    held[2]);
+                    held[2],
+                    m.lab_flow_rate);
   }
 
   std::vector<CellShape>
@@ -445,13 +558,13 @@ namespace rbc_ifem
   {
     TimerOutput::Scope scope(timer, "output");
     const std::string &directory = parameters.output_directory;
-    record.fluid_files.emplace_back(record.time,
-                                    fluid.write_vtu(directory, record.step));
+    record.fluid_files.emplace_back(
+      record.time, fluid.write_vtu(directory, record.step, frame_data()));
     write_pvd(directory, "flow", record.fluid_files, communicator);
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
       {
         const std::vector<std::string> files =
-          cells.write_vtu(directory, "cell", record.step);
+          cells.write_vtu(directory, "cell", record.step, frame_data());
         for (unsigned int c = 0; c < cells.size(); ++c)
           {
             record.cell_files[c].emplace_back(record.time, files[c]);
@@ -461,6 +574,14 @@ namespace rbc_ifem
                       communicator);
           }
       }
+  }
+
+  FieldData
+  IFEMSimulation::frame_data() const
+  {
+    return frame_field_data(record.time,
+                            fluid.get_frame_velocity(),
+                            record.frame_offset);
   }
 
   void
@@ -482,16 +603,26 @@ namespace rbc_ifem
   {
     TimerOutput::Scope scope(timer, "checkpoint");
     Checkpoint         checkpoint;
-    checkpoint.n_ranks   = Utilities::MPI::n_mpi_processes(communicator);
-    checkpoint.record    = record;
-    checkpoint.fluid     = fluid.state();
-    checkpoint.positions = cells.positions();
-    if (Utilities::MPI::this_mpi_process(communicator) == 0)
-      write_file_atomically(parameters.output_directory + "/checkpoint.bin",
-                            [&](std::ostream &out) {
-                              boost::archive::binary_oarchive archive(out);
-                              archive << checkpoint;
-                            });
+    checkpoint.n_ranks    = Utilities::MPI::n_mpi_processes(communicator);
+    checkpoint.parameters = parameter_file_text;
+    checkpoint.record     = record;
+    checkpoint.fluid      = fluid.state();
+    checkpoint.positions  = cells.positions();
+    if (Utilities::MPI::this_mpi_process(communicator) != 0)
+      return;
+    std::ostringstream payload;
+    {
+      boost::archive::binary_oarchive archive(payload);
+      archive << checkpoint;
+    }
+    // The last two: the one before stays as checkpoint_previous.bin.
+    const std::string path = parameters.output_directory + "/checkpoint.bin";
+    if (std::filesystem::exists(path))
+      std::filesystem::rename(path,
+                              parameters.output_directory +
+                                "/checkpoint_previous.bin");
+    const std::string file = checkpoint_file(payload.str());
+    write_file_atomically(path, [&](std::ostream &out) { out << file; });
   }
 
   void
@@ -508,32 +639,35 @@ namespace rbc_ifem
     Checkpoint checkpoint;
     try
       {
-        boost::archive::binary_iarchive archive(in);
+        std::istringstream              payload(checkpoint_payload(path));
+        boost::archive::binary_iarchive archive(payload);
         archive >> checkpoint;
       }
     catch (const std::exception &e)
       {
         throw InputError("Immersed cells/Resume",
                          "true",
-                         path +
-                           " is not a checkpoint this version of rbc-ifem "
-                           "reads (" +
-                           e.what() + ").");
+                         "the checkpoint " + path +
+                           " cannot be used: " + e.what() +
+                           ". The one before it, if the run wrote two, is "
+                           "checkpoint_previous.bin: rename it to "
+                           "checkpoint.bin to resume from there.");
       }
+    check_resumed_parameters(checkpoint.parameters, path);
     const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
     if (checkpoint.n_ranks != n_ranks ||
         checkpoint.fluid.solution.size() != fluid.get_dof_handler().n_dofs() ||
         checkpoint.positions.size() != cells.size() ||
         checkpoint.positions[0].size() != cells.positions()[0].size())
-      throw InputError(
-        "Immersed cells/Resume",
-        "true",
-        "the checkpoint " + path + " comes from a run on " +
-          std::to_string(checkpoint.n_ranks) + " rank(s) with " +
-          std::to_string(checkpoint.fluid.solution.size()) +
-          " fluid DoFs; this run has " + std::to_string(n_ranks) +
-          " rank(s) and " + std::to_string(fluid.get_dof_handler().n_dofs()) +
-          ": resume with the same parameter file and number of ranks.");
+      throw InputError("Immersed cells/Resume",
+                       "true",
+                       "the checkpoint " + path + " comes from a run on " +
+                         std::to_string(checkpoint.n_ranks) + " rank(s) with " +
+                         std::to_string(checkpoint.fluid.solution.size()) +
+                         " fluid DoFs; this run has " +
+                         std::to_string(n_ranks) + " rank(s) and " +
+                         std::to_string(fluid.get_dof_handler().n_dofs()) +
+                         ": resume on the same number of ranks.");
     if (checkpoint.record.step >= parameters.time.n_steps)
       throw InputError("Time/Number of steps",
                        std::to_string(parameters.time.n_steps),
@@ -546,6 +680,44 @@ namespace rbc_ifem
   }
 
   void
+  IFEMSimulation::check_resumed_parameters(const std::string &written,
+                                           const std::string &path) const
+  {
+    const auto before = parameter_values(written);
+    for (const auto &[name, value] : parameter_values(parameter_file_text))
+      {
+        const auto old = before.find(name);
+        if (old != before.end() && old->second != value &&
+            !may_change_on_resume(name))
+          throw InputError(
+            name,
+            value,
+            "the checkpoint " + path + " was written by a run with " + name +
+              " = " + old->second +
+              ". A resumed run computes what the run that "
+              "wrote it did: only Time/Number of steps, "
+              "Time/Output interval, Immersed cells/Resume, "
+              "Checkpoint interval and Progress interval may "
+              "change (and Output directory, for a copied run).");
+      }
+  }
+
+  void
+  IFEMSimulation::save_and_stop(const int signal) const
+  {
+    write_tables();
+    write_checkpoint();
+    const std::string &directory = parameters.output_directory;
+    throw RunInterrupted(
+      signal,
+      signal_name(signal) + " at step " + std::to_string(record.step) +
+        ", t = " + to_text(record.time) + " s: the tables so far and " +
+        directory +
+        "/checkpoint.bin are written. To go on: rbc-ifem FILE.prm " +
+        "--set \"Immersed cells/Resume=true\"");
+  }
+
+  void
   IFEMSimulation::stop(const std::string                 &why,
                        const std::vector<Vector<double>> &last_good)
   {
@@ -554,13 +726,51 @@ namespace rbc_ifem
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
       cells.write_vtu(parameters.output_directory,
                       "last_good_cell",
-                      record.step);
+                      record.step,
+                      frame_data());
     throw SolverFailure(
       "step " + std::to_string(record.step + 1) +
       ", t = " + std::to_string(record.time) + " s: " + why +
       ". The tables so far and the last good membranes (last_good_cell_*.vtu) "
       "are in " +
       parameters.output_directory + ".");
+  }
+
+  void
+  IFEMSimulation::report_summary(const unsigned int n_run,
+                                 const double       wall_seconds) const
+  {
+    pcout << "  summary: t = " << record.time << " s, " << n_run << " steps in "
+          << duration_text(wall_seconds) << ", "
+          << wall_seconds / std::max(1u, n_run) << " s per step" << std::endl;
+    if (!record.dm_history.empty())
+      {
+        // 1 µm³/s = 6e-11 mL/min, and 1 mmHg = 1.000000142 Torr.
+        const double to_ml_min_mmhg    = 60e-12 * 1.000000142;
+        const auto [first_time, first] = record.dm_history.front();
+        const auto [last_time, last]   = record.dm_history.back();
+        pcout << "  DM at t = " << first_time << " s " << first
+              << ", at t = " << last_time << " s " << last << " µm³/(s Torr) ("
+              << std::showpos << 100. * (last / first - 1.) << std::noshowpos
+              << "%); in mL/(min mmHg) " << first * to_ml_min_mmhg << " and "
+              << last * to_ml_min_mmhg << std::endl;
+      }
+    const std::vector<CellShape> shapes = cells.shapes();
+    double deformation = 0., volume_drift = 0., area_drift = 0.;
+    for (unsigned int c = 0; c < shapes.size(); ++c)
+      {
+        deformation += shapes[c].deformation_index / shapes.size();
+        const double dv = shapes[c].volume / cells.reference_volume(c) - 1.;
+        const double da = shapes[c].area / cells.reference_area(c) - 1.;
+        volume_drift =
+          std::abs(dv) > std::abs(volume_drift) ? dv : volume_drift;
+        area_drift = std::abs(da) > std::abs(area_drift) ? da : area_drift;
+      }
+    pcout << "  cells at the end: deformation index " << deformation
+          << (shapes.size() > 1 ? " (mean)" : "") << ", volume change "
+          << 100. * volume_drift << "%, area change " << 100. * area_drift
+          << "%" << (shapes.size() > 1 ? " (the largest over the cells)" : "")
+          << std::endl;
   }
 
   void
@@ -575,17 +785,23 @@ namespace rbc_ifem
       {
         record_shapes();
         if (immersed.diffusion_interval > 0)
-          pcout << "  t = 0 s: DM " << solve_uptake(0) << " µm³/(s Torr)"
-                << std::endl;
+          {
+            const double dm = solve_uptake(0);
+            pcout << "  t = 0 s: DM " << dm << " µm³/(s Torr)" << std::endl;
+          }
         write_fields();
         write_tables();
       }
 
-    Timer              clock;
-    const unsigned int first_step = record.step;
+    const InterruptionGuard interruption;
+    Timer                   clock;
+    const unsigned int      first_step = record.step;
+    const double            end_time   = time.n_steps * time_step;
     while (record.step < time.n_steps)
       {
-        const StepReport   report    = advance();
+        const StepReport report = advance();
+        if (const int signal = interruption.received(communicator))
+          save_and_stop(signal);
         const unsigned int step      = record.step;
         const bool         last      = step == time.n_steps;
         const bool         diffusion = due(step, immersed.diffusion_interval);
@@ -596,7 +812,8 @@ namespace rbc_ifem
 
         record_flow(report);
         std::ostringstream progress;
-        progress << "  step " << step << ", t = " << record.time
+        progress << "  step " << step << " of " << time.n_steps
+                 << ", t = " << record.time << " of " << end_time
                  << " s: " << report.linear_iterations
                  << " FGMRES iterations, frame velocity "
                  << fluid.get_frame_velocity() << " µm/s";
@@ -619,16 +836,17 @@ namespace rbc_ifem
             write_fields();
             write_tables();
           }
-        pcout << progress.str() << std::endl;
+        pcout << progress.str() << "  "
+              << time_left_text(clock.wall_time(),
+                                step - first_step,
+                                time.n_steps - step)
+              << std::endl;
         if (due(step, immersed.checkpoint_interval) ||
             (last && immersed.checkpoint_interval > 0))
           write_checkpoint();
       }
     write_tables();
-    const unsigned int n_run = record.step - first_step;
-    pcout << "  " << n_run << " steps in " << clock.wall_time() << " s, "
-          << clock.wall_time() / std::max(1u, n_run) << " s per step"
-          << std::endl;
+    report_summary(record.step - first_step, clock.wall_time());
     timer.print_summary();
   }
 } // namespace rbc_ifem

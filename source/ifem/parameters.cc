@@ -12,10 +12,17 @@ namespace rbc_ifem
     prm.enter_subsection("Time");
     add_parameter(prm,
                   "Time step",
-                  time_step,
-                  "Time step Δt of the implicit (backward Euler) "
-                  "integration [s].",
-                  Patterns::Double(0.));
+                  time_step_text,
+                  "Time step Δt [s]: of the fluid's backward Euler step "
+                  "and, with Immersed cells/Enabled, of the explicit "
+                  "coupling, which stays stable only below about 0.7 of the "
+                  "estimate the run prints (doc/ifem.md). auto: with "
+                  "immersed cells half that estimate, for the plasma alone "
+                  "1e-3 s.",
+                  PositiveOrAuto());
+    prm.add_action("Time step", [this](const std::string &text) {
+      time_step = Utilities::trim(text) == "auto" ? 0. : std::stod(text);
+    });
     add_parameter(prm,
                   "Number of steps",
                   n_steps,
@@ -24,16 +31,33 @@ namespace rbc_ifem
     add_parameter(prm,
                   "Output interval",
                   output_interval,
-                  "Write the fields (VTU) every this many steps; the CSV "
-                  "tables get every step.",
+                  "Write the fields (VTU) every this many steps and at the "
+                  "last; the CSV tables are rewritten then too. Experiment "
+                  "flow without cells has a flow.csv row for every step; "
+                  "with Immersed cells/Enabled, flow.csv has a row for every "
+                  "progress line (Immersed cells/Progress interval, and "
+                  "every diffusion, output and checkpoint step) and "
+                  "cells.csv one per cell at every output (doc/outputs.md).",
                   Patterns::Integer(1));
     prm.leave_subsection();
   }
 
-  void
-  TimeParameters::validate() const
+  bool
+  TimeParameters::automatic_time_step() const
   {
-    require_positive("Time/Time step", time_step, " s");
+    return time_step == 0.;
+  }
+
+  double
+  TimeParameters::plasma_time_step() const
+  {
+    return automatic_time_step() ? 1e-3 : time_step;
+  }
+
+  double
+  TimeParameters::coupled_time_step(const double limit) const
+  {
+    return automatic_time_step() ? 0.5 * limit : time_step;
   }
 
   void

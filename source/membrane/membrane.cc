@@ -413,11 +413,12 @@ namespace rbc_ifem
   }
 
   void
-  Membrane::write_vtu(const Vector<double> &x,
-                      const std::string    &directory,
-                      const std::string    &name,
-                      const std::vector<std::pair<std::string, Vector<double>>>
-                        &dof_vectors) const
+  Membrane::write_vtu(
+    const Vector<double>                                      &x,
+    const std::string                                         &directory,
+    const std::string                                         &name,
+    const std::vector<std::pair<std::string, Vector<double>>> &dof_vectors,
+    const FieldData                                           &field_data) const
   {
     Vector<double> displacement(x);
     displacement -= reference;
@@ -439,8 +440,7 @@ namespace rbc_ifem
                            std::max(2u, parameters.degree),
                            DataOut<2, 3>::curved_inner_cells);
     data_out.set_flags(fast_vtk_flags());
-    write_file_atomically(directory + "/" + name + ".vtu",
-                          [&](std::ostream &out) { data_out.write_vtu(out); });
+    rbc_ifem::write_vtu(data_out, directory + "/" + name + ".vtu", field_data);
   }
 
   void

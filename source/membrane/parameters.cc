@@ -32,8 +32,9 @@ namespace rbc_ifem
                   "Local area dilation modulus K [pN/µm] (small-strain "
                   "tension per relative area change). The real membrane's "
                   "is ~3e5 pN/µm; 500 keeps local area changes below ~2% "
-                  "at 200 pN while the solver stays fast. Must be > 3G "
-                  "for the neo-Hookean law.",
+                  "at 200 pN while the solver stays fast. Must be at "
+                  "least 3G for the neo-Hookean law (K = 3G is its classical "
+                  "form, C2 = 0).",
                   Patterns::Double(0.));
     add_parameter(prm,
                   "Bending modulus",

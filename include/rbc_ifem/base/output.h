@@ -1,6 +1,8 @@
 #ifndef rbc_ifem_base_output_h
 #define rbc_ifem_base_output_h
 
+#include <rbc_ifem/base/field_data.h>
+
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
@@ -39,6 +41,31 @@ namespace rbc_ifem
   DataOutBase::VtkFlags
   fast_vtk_flags();
 
+  /**
+   * @p data_out (its patches built) as the file @p path, with
+   * @p field_data, complete or not at all (write_file_atomically()).
+   */
+  template <int dim, int spacedim>
+  void
+  write_vtu(const DataOutInterface<dim, spacedim> &data_out,
+            const std::string                     &path,
+            const FieldData                       &field_data = {});
+
+  /**
+   * What DataOutInterface::write_vtu_with_pvtu_record() writes, each piece
+   * with @p field_data: every rank its piece NAME_CCCC.RANK.vtu, rank 0 the
+   * NAME_CCCC.pvtu that joins them, whose name it returns (CCCC the
+   * @p counter, four digits).
+   */
+  template <int dim, int spacedim>
+  std::string
+  write_vtu_pieces(const DataOutInterface<dim, spacedim> &data_out,
+                   const std::string                     &directory,
+                   const std::string                     &name,
+                   const unsigned int                     counter,
+                   const MPI_Comm                         communicator,
+                   const FieldData                       &field_data = {});
+
   /// Write NAME.pvd listing (time, file) pairs, rank 0 only.
   void
   write_pvd(const std::string                                 &directory,
@@ -62,10 +89,6 @@ namespace rbc_ifem
    */
   std::string
   written_files(const std::string &directory);
-
-  /// Every parameter of @p prm as a .prm file (with their documentation).
-  std::string
-  parameter_text(const ParameterHandler &prm);
 
   /**
    * Create @p directory if needed and write @p text (parameter_text()) there
@@ -93,7 +116,7 @@ namespace rbc_ifem
    * cell index as cell data. Written by rank 0; returns the file's name
    * (for a .pvd record). @p add_fields(i, data_out), if given, adds the
    * fields of membrane i (the same names on every membrane) to its DataOut
-   * before the patches are built.
+   * before the patches are built; the file carries @p field_data.
    */
   std::string
   write_membranes(
@@ -102,7 +125,22 @@ namespace rbc_ifem
     const std::string                                        &directory,
     const std::string                                        &name,
     const MPI_Comm                                            communicator,
-    const std::function<void(unsigned int, DataOut<2, 3> &)> &add_fields = {});
+    const std::function<void(unsigned int, DataOut<2, 3> &)> &add_fields = {},
+    const FieldData                                          &field_data = {});
+  /// A wall time as a person reads it: "8.4 s", "7 min 05 s", "2 h 03 min".
+  std::string
+  duration_text(const double seconds);
+
+  /**
+   * The end of a progress line: "[wall 25 s, about 7 min 30 s left]", from
+   * the @p elapsed seconds that @p done steps took and the @p left steps to
+   * go (at the same pace).
+   */
+  std::string
+  time_left_text(const double       elapsed,
+                 const unsigned int done,
+                 const unsigned int left);
+
   /// The peak resident memory of the largest rank, in MB.
   double
   peak_memory_mb(const MPI_Comm communicator);

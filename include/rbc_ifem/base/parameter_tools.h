@@ -37,6 +37,23 @@ namespace rbc_ifem
                            "' has more than six significant digits"));
   }
 
+  /**
+   * The pattern of a number > 0 or the word auto, for a parameter that the
+   * program can choose itself (Time/Time step).
+   */
+  class PositiveOrAuto : public Patterns::PatternBase
+  {
+  public:
+    bool
+    match(const std::string &text) const override;
+
+    std::string
+    description(const OutputStyle style = Machine) const override;
+
+    std::unique_ptr<Patterns::PatternBase>
+    clone() const override;
+  };
+
   /// "a|b|c" from @p names.
   inline std::string
   join_names(const std::vector<std::string> &names)

@@ -132,12 +132,14 @@ namespace rbc_ifem
 
     /**
      * Each cell as NAME_C_CCCC.vtu (rank 0's job: call it there), with the
-     * displacement and the last forces; returns the file names.
+     * displacement and the last forces, each file carrying @p field_data;
+     * returns the file names.
      */
     std::vector<std::string>
     write_vtu(const std::string &directory,
               const std::string &name,
-              const unsigned int counter) const;
+              const unsigned int counter,
+              const FieldData   &field_data = {}) const;
 
     /// The positions of every cell, for a checkpoint.
     const std::vector<Vector<double>> &

@@ -1,6 +1,7 @@
 #ifndef rbc_ifem_diffusion_co_diffusion_h
 #define rbc_ifem_diffusion_co_diffusion_h
 
+#include <rbc_ifem/base/field_data.h>
 #include <rbc_ifem/diffusion/parameters.h>
 
 #include <deal.II/base/index_set.h>
@@ -21,6 +22,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -58,6 +60,23 @@ namespace rbc_ifem
    * The volume mesh is a parallel::shared::Triangulation: every rank knows
    * every cell, so every rank can locate every membrane point.
    */
+  /**
+   * The membranes' cells are finer than the diffusion mesh around them:
+   * the multiplier then violates the inf-sup condition of the saddle point
+   * problem (with membrane cells 1.7 times smaller FGMRES no longer
+   * converges). The caller, who knows which parameters made the meshes,
+   * turns it into an InputError.
+   */
+  class MembranesFinerThanMesh : public std::runtime_error
+  {
+  public:
+    MembranesFinerThanMesh(const double membrane_cell_size,
+                           const double volume_cell_size);
+
+    const double membrane_cell_size; ///< mean membrane cell size [µm]
+    const double volume_cell_size;   ///< mean diffusion cell size there [µm]
+  };
+
   class CODiffusion
   {
   public:
@@ -138,12 +157,14 @@ namespace rbc_ifem
      * NAME_membranes_CCCC.vtu with the flux density λ as a scalar "co_flux"
      * and as the vector "co_flux_vector" = -λ n (pointing into the cell: the
      * direction CO moves, the paper's Fig. 4f); CCCC is @p counter. The
-     * caller lists the files in its .pvd records.
+     * caller lists the files in its .pvd records. Every file carries
+     * @p field_data.
      */
     OutputFiles
     write_output(const std::string &directory,
                  const std::string &name,
-                 const unsigned int counter = 0) const;
+                 const unsigned int counter    = 0,
+                 const FieldData   &field_data = {}) const;
 
   private:
     struct CouplingData;

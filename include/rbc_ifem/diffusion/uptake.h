@@ -1,6 +1,7 @@
 #ifndef rbc_ifem_diffusion_uptake_h
 #define rbc_ifem_diffusion_uptake_h
 
+#include <rbc_ifem/base/field_data.h>
 #include <rbc_ifem/diffusion/parameters.h>
 #include <rbc_ifem/geometry/parameters.h>
 
@@ -41,6 +42,21 @@ namespace rbc_ifem
    * @p write_fields, if given, writes what the caller wants of the solve.
    * Throws SolverFailure if the solve fails.
    */
+  /**
+   * What solve_uptake() does before it assembles, to reject the input it
+   * would reject (a membrane outside the mesh, a diffusion mesh too coarse
+   * for the membranes: InputError) before a run writes anything.
+   */
+  void
+  check_uptake_meshes(const GeometryParameters  &geometry,
+                      const MeshParameters      &mesh_parameters,
+                      const DiffusionParameters &d,
+                      const std::vector<const Triangulation<2, 3> *> &surfaces,
+                      const MappingQ<2, 3>                           &mapping,
+                      const unsigned int band_refinements,
+                      const MPI_Comm     communicator,
+                      TimerOutput       &timer);
+
   Uptake
   solve_uptake(
     const GeometryParameters                       &geometry,
@@ -71,14 +87,16 @@ namespace rbc_ifem
   public:
     /**
      * Write the fields of @p diffusion, solved at @p time [s], as the
-     * @p counter-th into @p directory, and rewrite the two .pvd records.
+     * @p counter-th into @p directory, each file carrying @p field_data,
+     * and rewrite the two .pvd records.
      */
     void
     write(const CODiffusion &diffusion,
           const std::string &directory,
           const double       time,
           const unsigned int counter,
-          const MPI_Comm     communicator);
+          const MPI_Comm     communicator,
+          const FieldData   &field_data = {});
 
     template <class Archive>
     void

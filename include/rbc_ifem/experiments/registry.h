@@ -74,13 +74,16 @@ namespace rbc_ifem
     operator=(const RunParameters &) = delete;
 
     /**
-     * Read @p filename and check what can be checked without building
-     * anything. Throws InputError, naming the file, the parameter and the
-     * value, if the file cannot be read, holds an unknown entry or a value
-     * outside its pattern, or asks for something impossible.
+     * Read @p filename, then each of @p changes ("Subsection/Name=value",
+     * the command line's --set), and check what can be checked without
+     * building anything. Throws InputError, naming the file or the change,
+     * the parameter and the value, if the file cannot be read, holds an
+     * unknown entry or a value outside its pattern, or asks for something
+     * impossible.
      */
     void
-    read(const std::string &filename);
+    read(const std::string              &filename,
+         const std::vector<std::string> &changes = {});
 
     /**
      * Take every value of another run's parameter file @p text
@@ -108,6 +111,10 @@ namespace rbc_ifem
     print(std::ostream &out) const;
 
   private:
+    /// Set one "Subsection/Name=value" of the command line.
+    void
+    set(const std::string &change);
+
     /// The index in experiment_types() of the one Experiment names.
     unsigned int
     chosen() const;

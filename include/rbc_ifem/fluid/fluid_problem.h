@@ -1,6 +1,7 @@
 #ifndef rbc_ifem_fluid_fluid_problem_h
 #define rbc_ifem_fluid_fluid_problem_h
 
+#include <rbc_ifem/base/field_data.h>
 #include <rbc_ifem/fluid/parameters.h>
 #include <rbc_ifem/geometry/parameters.h>
 
@@ -101,7 +102,10 @@ namespace rbc_ifem
   /// Integral quantities of a flow field, as flow.csv reports them.
   struct FlowMeasures
   {
-    double flow_rate = 0.; ///< ∫ v·n over the outlet [µm³/s]
+    /// ∫ v·n over the outlet [µm³/s], v the velocity the frame sees
+    double flow_rate = 0.;
+    /// The same in the laboratory, ∫ (v + V e_x)·n, V the frame velocity
+    double lab_flow_rate = 0.;
     /// Mean inlet minus mean outlet pressure [pN/µm²]; in a periodic
     /// segment the drop G L that the pressure gradient imposes.
     double pressure_drop = 0.;
@@ -233,9 +237,15 @@ namespace rbc_ifem
     FlowMeasures
     measure() const;
 
-    /// VTU (one piece per rank) and PVTU of v and p; returns the PVTU name.
+    /**
+     * VTU (one piece per rank) and PVTU of v and p, and of the lab-frame
+     * velocity v + V e_x (V the frame velocity), each piece carrying
+     * @p field_data; returns the PVTU name.
+     */
     std::string
-    write_vtu(const std::string &directory, const unsigned int counter) const;
+    write_vtu(const std::string &directory,
+              const unsigned int counter,
+              const FieldData   &field_data = {}) const;
 
     const TrilinosWrappers::MPI::BlockVector &
     solution() const;

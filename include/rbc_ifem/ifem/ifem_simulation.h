@@ -4,6 +4,7 @@
 #include <rbc_ifem/coupling/cell_population.h>
 #include <rbc_ifem/coupling/contact_gaps.h>
 #include <rbc_ifem/coupling/immersed_coupling.h>
+#include <rbc_ifem/coupling/time_step_limit.h>
 #include <rbc_ifem/fluid/fluid_problem.h>
 #include <rbc_ifem/ifem/flow_domain.h>
 #include <rbc_ifem/ifem/run_observer.h>
@@ -55,11 +56,16 @@ namespace rbc_ifem
   class IFEMSimulation
   {
   public:
-    /// Times its sections in @p timer.
-    IFEMSimulation(const Parameters &parameters,
-                   const FlowDomain &domain,
-                   const MPI_Comm    communicator,
-                   TimerOutput      &timer);
+    /**
+     * The run of @p parameters, whose parameters.prm is
+     * @p parameter_file_text (a checkpoint carries it, and a resume refuses
+     * a checkpoint of other parameters); times its sections in @p timer.
+     */
+    IFEMSimulation(const Parameters  &parameters,
+                   const std::string &parameter_file_text,
+                   const FlowDomain  &domain,
+                   const MPI_Comm     communicator,
+                   TimerOutput       &timer);
 
     /// Add @p observer (which must outlive the run) to those run() calls.
     void
@@ -86,9 +92,21 @@ namespace rbc_ifem
      */
     void
     add_cell_forces();
-    /// The dimensionless numbers and stability estimates of the run.
+    /// The dimensionless numbers and the stability estimate @p stable of
+    /// the run, and the warnings they call for.
     void
-    report_startup() const;
+    report_startup(const CouplingTimeStepLimit &stable) const;
+    /// Throw InputError now, before the run writes anything, if the first
+    /// DM solve would (a diffusion mesh too coarse for the membranes).
+    void
+    check_uptake_input() const;
+    /**
+     * The end-of-run lines: @p n_run steps in @p wall_seconds, DM first and
+     * last (and in mL/(min mmHg)), the cells' deformation index and their
+     * volume and area drift.
+     */
+    void
+    report_summary(const unsigned int n_run, const double wall_seconds) const;
     /// Steps 2-6 and the frame update; returns the fluid's report.
     StepReport
     advance();
@@ -109,6 +127,10 @@ namespace rbc_ifem
     /// (infinite for one cell).
     double
     smallest_cell_gap() const;
+    /// The VTU field data of now: the time and the frame's velocity and
+    /// offset.
+    FieldData
+    frame_data() const;
     void
     write_fields();
     void
@@ -117,11 +139,21 @@ namespace rbc_ifem
     write_checkpoint() const;
     void
     read_checkpoint();
+    /// Throw InputError naming the first parameter (other than those a
+    /// resume may change) whose value differs from @p written's, the
+    /// parameters of the run that wrote the checkpoint @p path.
+    void
+    check_resumed_parameters(const std::string &written,
+                             const std::string &path) const;
+    /// Write the tables and a checkpoint, then throw RunInterrupted.
+    [[noreturn]] void
+    save_and_stop(const int signal) const;
     /// Write the tables and the last good membranes, then throw.
     [[noreturn]] void
     stop(const std::string &why, const std::vector<Vector<double>> &last_good);
 
     const Parameters                   parameters;
+    const std::string                  parameter_file_text;
     const MPI_Comm                     communicator;
     const FlowDomain                   domain;
     ConditionalOStream                 pcout;
@@ -134,7 +166,8 @@ namespace rbc_ifem
     RunRecord                          record;
     /// Whether anything can touch: several cells, or a wall.
     bool   contacts  = false;
-    double mesh_size = 0.;                   ///< fluid h at the membranes [µm]
+    double mesh_size = 0.; ///< fluid h at the membranes [µm]
+    double time_step = 0.; ///< Δt [s]: Time/Time step, or auto's choice
     TrilinosWrappers::MPI::BlockVector load; ///< the spread forces, owned
   };
 } // namespace rbc_ifem

@@ -17,15 +17,26 @@ namespace rbc_ifem
    */
   struct TimeParameters
   {
-    double       time_step       = 1e-3; ///< Δt [s]
+    /// Time/Time step as written: a number [s] or auto.
+    std::string time_step_text = "auto";
+    /// Δt [s] from time_step_text; 0 for auto (automatic_time_step()).
+    double       time_step       = 0.;
     unsigned int n_steps         = 10;
     unsigned int output_interval = 1; ///< VTU every this many steps
 
+    /// Whether the run chooses Δt: Time step = auto.
+    bool
+    automatic_time_step() const;
+    /// Δt [s] of the plasma alone (no immersed cells): 1e-3 s for auto.
+    double
+    plasma_time_step() const;
+    /// Δt [s] of a run with immersed cells whose explicit-coupling
+    /// estimate is @p limit: half of it for auto.
+    double
+    coupled_time_step(const double limit) const;
+
     void
     add_parameters(ParameterHandler &prm);
-    /// Throws InputError unless Time step > 0.
-    void
-    validate() const;
   };
 
   /**

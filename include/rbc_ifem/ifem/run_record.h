@@ -26,13 +26,15 @@ namespace rbc_ifem
     std::vector<std::vector<std::pair<double, std::string>>>
                  cell_files;    ///< per cell
     UptakeFields uptake_fields; ///< diffusion.pvd, diffusion_membranes.pvd
+    /// Every DM solve so far: (time [s], DM [µm³ s⁻¹ Torr⁻¹]).
+    std::vector<std::pair<double, double>> dm_history;
 
     template <class Archive>
     void
     serialize(Archive &archive, const unsigned int)
     {
       archive &step &time &frame_offset &flow &cells &dm &fluid_files
-        &cell_files &uptake_fields;
+        &cell_files &uptake_fields &dm_history;
     }
   };
 } // namespace rbc_ifem

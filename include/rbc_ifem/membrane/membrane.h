@@ -1,6 +1,7 @@
 #ifndef rbc_ifem_membrane_membrane_h
 #define rbc_ifem_membrane_membrane_h
 
+#include <rbc_ifem/base/field_data.h>
 #include <rbc_ifem/membrane/elastic_law.h>
 #include <rbc_ifem/membrane/parameters.h>
 
@@ -116,14 +117,16 @@ namespace rbc_ifem
      * The deformed surface x as NAME.vtu in @p directory (the caller decides
      * which rank writes), curved by a MappingFEField on x, with the
      * displacement x - X and, as further vector fields, each (name, vector)
-     * of @p dof_vectors (one entry per DoF, like the forces).
+     * of @p dof_vectors (one entry per DoF, like the forces); the file
+     * carries @p field_data.
      */
     void
     write_vtu(const Vector<double> &x,
               const std::string    &directory,
               const std::string    &name,
               const std::vector<std::pair<std::string, Vector<double>>>
-                &dof_vectors = {}) const;
+                              &dof_vectors = {},
+              const FieldData &field_data  = {}) const;
 
     /**
      * The surface x as a mesh with flat cells between its vertices (the

@@ -12,19 +12,19 @@ together keeps the largest near the starting gap; a cluster that comes
 apart shows it growing. Needs python3-matplotlib
 (`scripts/install-packages.sh --docs`).
 """
-import glob
 import sys
 
-import matplotlib
+from matplotlib.lines import Line2D
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
-from tables import read
+import plot_style
+from rbc_ifem_run import Run
+
+plt = plot_style.pyplot()
 
 
 def gaps_over_time(run):
     """Times [ms] and the smallest and largest nearest-neighbour gap then."""
-    rows = read(run + "/cells.csv")
+    rows = run.table("cells.csv")
     times = sorted({r["time"] for r in rows})
     gaps = [[r["min_gap"] for r in rows if r["time"] == t] for t in times]
     return [1e3 * t for t in times], [min(g) for g in gaps], [max(g) for g in gaps]
@@ -34,21 +34,25 @@ def main(without, with_aggregation, picture):
     figure, panels = plt.subplots(1, 2, figsize=(11, 4.2), sharey=True, layout="constrained")
     for panel, directory, title in ((panels[0], without, "repulsion only"),
                                     (panels[1], with_aggregation, "with aggregation (Morse)")):
-        runs = sorted(glob.glob(directory + "/clustered_*_*/"),
-                      key=lambda d: int(d.rstrip("/").split("_")[-2]))
-        for run in runs:
-            n = int(run.rstrip("/").split("_")[-2])
+        for run in Run(directory).runs("clustered_*_*"):
+            n = int(run.name.split("_")[1])
             if n < 2:
                 continue
             t, smallest, largest = gaps_over_time(run)
-            line, = panel.plot(t, smallest, "-", label=f"{n} cells: nearest pair")
-            panel.plot(t, largest, "--", color=line.get_color(), label=f"{n} cells: farthest neighbour")
+            line, = panel.plot(t, smallest, "-", label=f"{n} cells")
+            panel.plot(t, largest, "--", color=line.get_color())
         panel.set_title(title)
         panel.set_xlabel("time [ms]")
-        panel.grid(alpha=0.3)
-        panel.legend(fontsize=8)
     panels[0].set_ylabel("gap from a cell to its nearest neighbour [µm]")
-    figure.savefig(picture, dpi=130)
+    # One key for both panels, in room made above the curves: the colour
+    # is the train, the style the gap.
+    handles, labels = panels[0].get_legend_handles_labels()
+    handles += [Line2D([], [], color="grey", linestyle="-"), Line2D([], [], color="grey", linestyle="--")]
+    labels += ["nearest pair (smallest gap)", "farthest neighbour (largest)"]
+    low, high = panels[0].get_ylim()
+    panels[0].set_ylim(low, high + 0.35 * (high - low))
+    panels[0].legend(handles, labels, loc="upper left", ncol=2)
+    plot_style.save(figure, picture)
 
 
 if __name__ == "__main__":

@@ -8,39 +8,28 @@ membranes (min_gap) with the repulsion range of the run's parameters.prm;
 (b) the deformation index of each cell. Needs python3-matplotlib
 (`scripts/install-packages.sh --docs`).
 """
-import re
 import sys
 
-import matplotlib
+import plot_style
+from rbc_ifem_run import Run
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
-from tables import read
-
-
-def parameter(directory, name):
-    """The value of `set NAME = value` in the run's parameters.prm."""
-    with open(directory + "/parameters.prm") as f:
-        for line in f:
-            match = re.match(r"\s*set\s+" + re.escape(name) + r"\s*=\s*(\S+)", line)
-            if match:
-                return float(match.group(1))
-    raise KeyError(name)
+plt = plot_style.pyplot()
 
 
 def main(directory, picture):
-    rows = read(directory + "/cells.csv")
+    run = Run(directory)
+    rows = run.table("cells.csv")
     cells = sorted({int(r["cell"]) for r in rows})
     figure, (gap, shape) = plt.subplots(1, 2, figsize=(10, 3.8), layout="constrained")
 
     first = [r for r in rows if r["cell"] == 0]
     gap.plot([1e3 * r["time"] for r in first], [r["min_gap"] for r in first], "o-",
              color="tab:blue", label="gap between the membranes")
-    gap.axhline(parameter(directory, "Repulsion range"), color="tab:red",
+    gap.axhline(run.parameter("Repulsion range"), color="tab:red",
                 linestyle="--", label="repulsion range Δ")
     gap.axhline(0, color="black", linewidth=0.8)
     gap.set_ylabel("gap [µm]")
-    gap.legend(fontsize=8)
+    gap.legend()
     gap.set_title("(a) the gap between the cells")
 
     for c in cells:
@@ -48,12 +37,11 @@ def main(directory, picture):
         shape.plot([1e3 * r["time"] for r in mine],
                    [r["deformation_index"] for r in mine], "o-", label=f"cell {c}")
     shape.set_ylabel("deformation index (L − D)/(L + D)")
-    shape.legend(fontsize=8)
+    shape.legend()
     shape.set_title("(b) their shapes")
     for axes in (gap, shape):
         axes.set_xlabel("time [ms]")
-        axes.grid(alpha=0.3)
-    figure.savefig(picture, dpi=150)
+    plot_style.save(figure, picture)
 
 
 if __name__ == "__main__":

@@ -15,28 +15,16 @@ Writes two pictures:
                    time for each layout (every seed of the random ones).
 Needs python3-matplotlib (`scripts/install-packages.sh --docs`).
 """
-import csv
 import statistics
 import sys
 
-import matplotlib
+import plot_style
+from rbc_ifem_run import Run
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
+plt = plot_style.pyplot()
 
 STYLE = {"uniform": ("o", "tab:blue"), "random": ("s", "tab:orange"),
          "clustered": ("^", "tab:green")}
-
-
-def rows_of(path):
-    """The rows of a CSV table as dicts, numbers as floats, text kept."""
-    def value(text):
-        try:
-            return float(text)
-        except ValueError:
-            return text
-    with open(path) as f:
-        return [{k: value(v) for k, v in row.items()} for row in csv.DictReader(f)]
 
 
 def by_layout_and_n(summary, column):
@@ -62,9 +50,8 @@ def plot_dm(summary, picture):
                                label=f"{layout}, {'after flow' if filled else 'rigid, t = 0'}")
         panel.set_xlabel("number of red cells in the segment")
         panel.set_ylabel(label + " [µm³ s⁻¹ Torr⁻¹]")
-        panel.grid(alpha=0.3)
-    axes[0].legend(fontsize=8)
-    figure.savefig(picture, dpi=130)
+    axes[0].legend()
+    plot_style.save(figure, picture)
 
 
 def plot_time(history, n_cells, picture):
@@ -80,21 +67,22 @@ def plot_time(history, n_cells, picture):
         uptake.plot(t, [r["dm_total"] for r in rows], marker + "-", color=colour,
                     alpha=1 if layout != "random" or seed == min(s for l, s in runs if l == layout) else 0.5,
                     label=label)
-        if all(r["min_gap"] != "" for r in rows):
+        if all("min_gap" in r for r in rows):  # a lone cell has none
             gaps.plot(t, [r["min_gap"] for r in rows], marker + "-", color=colour, label=label)
     uptake.set_ylabel(f"DM of the segment, {n_cells} cells [µm³ s⁻¹ Torr⁻¹]")
     gaps.set_ylabel("smallest gap between two cells [µm]")
     gaps.set_yscale("log")
+    plot_style.plain_log_ticks(gaps.yaxis)
     for axes in (uptake, gaps):
         axes.set_xlabel("time [ms]")
-        axes.grid(alpha=0.3)
-        axes.legend(fontsize=8)
-    figure.savefig(picture, dpi=130)
+        axes.legend()
+    plot_style.save(figure, picture)
 
 
 def main(directory, prefix, n_cells=None):
-    summary = rows_of(directory + "/flowing_layouts_summary.csv")
-    history = rows_of(directory + "/flowing_layouts.csv")
+    study = Run(directory)
+    summary = study.table("flowing_layouts_summary.csv")
+    history = study.table("flowing_layouts.csv")
     numbers = sorted({int(r["n_cells"]) for r in summary})
     if n_cells is None:
         below = [n for n in numbers if 1 < n < 7]

@@ -8,31 +8,28 @@ deviation over the seeds.
 
 Needs python3-matplotlib (`scripts/install-packages.sh --docs`).
 """
-import csv
 import sys
 
-import matplotlib
+import plot_style
+from rbc_ifem_run import read_table
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
+plt = plot_style.pyplot()
 
 STYLE = {"uniform": ("o-", "tab:blue"), "random": ("s-", "tab:orange"),
          "clustered": ("^-", "tab:green")}
 
 
-def read(path):
-    """{layout: list of rows} with numbers as floats."""
+def by_layout(path):
+    """{layout: its rows of the table PATH}, in the table's order."""
     table = {}
-    with open(path) as f:
-        for row in csv.DictReader(f):
-            numbers = {key: float(value) for key, value in row.items() if key != "layout"}
-            table.setdefault(row["layout"], []).append(numbers)
+    for row in read_table(path):
+        table.setdefault(row["layout"], []).append(row)
     return table
 
 
 def main(path, picture):
-    table = read(path)
-    figure, (total, per_cell) = plt.subplots(1, 2, figsize=(10, 4))
+    table = by_layout(path)
+    figure, (total, per_cell) = plt.subplots(1, 2, figsize=(10, 4), layout="constrained")
     for layout, rows in table.items():
         marker, colour = STYLE.get(layout, ("x-", "black"))
         n = [r["n_cells"] for r in rows]
@@ -46,10 +43,8 @@ def main(path, picture):
     per_cell.set_ylabel("DM per cell [µm³ s⁻¹ Torr⁻¹]")
     for axes in (total, per_cell):
         axes.set_xlabel("number of red cells in the 20 µm segment")
-        axes.grid(alpha=0.3)
         axes.legend()
-    figure.tight_layout()
-    figure.savefig(picture, dpi=120)
+    plot_style.save(figure, picture)
 
 
 if __name__ == "__main__":

@@ -12,11 +12,10 @@ volume and area from the reference cell. Needs python3-matplotlib
 """
 import sys
 
-import matplotlib
+import plot_style
+from rbc_ifem_run import Run
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
-from tables import read
+plt = plot_style.pyplot()
 
 
 def column(rows, name, scale=1.0):
@@ -30,8 +29,9 @@ def leave_room_on_top(axes, fraction=0.3):
 
 
 def main(directory, picture):
-    dm = read(directory + "/dm.csv")
-    cell = read(directory + "/cells.csv", cell=0)
+    run = Run(directory)
+    dm = run.table("dm.csv")
+    cell = run.table("cells.csv", cell=0)
     t_dm, t_cell = column(dm, "time", 1e3), column(cell, "time", 1e3)
     figure, (total, shape, change) = plt.subplots(1, 3, figsize=(13, 3.8),
                                                  layout="constrained")
@@ -53,8 +53,7 @@ def main(directory, picture):
     leave_room_on_top(shape)
     leave_room_on_top(index)
     lines = shape.get_lines() + index.get_lines()
-    shape.legend(lines, [line.get_label() for line in lines], fontsize=8,
-                 loc="upper center", ncol=2)
+    shape.legend(lines, [line.get_label() for line in lines], loc="upper center", ncol=2)
     shape.set_title("(b) shape of cell 0")
 
     change.plot(t_cell, column(cell, "volume_change", 100.0), "o-", color="tab:purple",
@@ -63,13 +62,13 @@ def main(directory, picture):
                 label="area")
     change.axhline(0, color="black", linewidth=0.8)
     change.set_ylabel("change from the reference cell [%]")
-    change.legend(fontsize=8)
+    change.legend()
     change.set_title("(c) volume and area of cell 0")
 
+    index.grid(False)
     for axes in (total, shape, change):
         axes.set_xlabel("time [ms]")
-        axes.grid(alpha=0.3)
-    figure.savefig(picture, dpi=150)
+    plot_style.save(figure, picture)
 
 
 if __name__ == "__main__":

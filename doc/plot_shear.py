@@ -8,50 +8,30 @@ run, from OUTPUT_DIRECTORY/ca_<Ca>/shear.csv; (b) the steady D against the
 capillary number Ca = μaγ̇/G from shear_summary.csv, beside the published
 values in doc/results/shear_references.csv and the small-deformation theory
 D = 25/12 Ca; (c) the steady shapes: the cut of each capsule's last membrane
-(cell_0 VTU) by the shear plane z = 0. Needs python3-matplotlib and
+(the last file of cell_0.pvd) by the shear plane z = 0, one colour per Ca
+as in (a), keyed by the colour bar. Needs python3-matplotlib and
 python3-vtk9 (`scripts/install-packages.sh --docs`).
 """
-import csv
-import glob
 import os
 import sys
-import xml.etree.ElementTree as ElementTree
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
+from matplotlib.cm import ScalarMappable
+from matplotlib.colors import BoundaryNorm, ListedColormap
 from vtkmodules.vtkCommonDataModel import vtkPlane
 from vtkmodules.vtkFiltersCore import vtkCutter, vtkStripper
 from vtkmodules.vtkFiltersGeometry import vtkGeometryFilter
-from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
 
+import plot_style
+from rbc_ifem_run import Run, read_dataset, read_table
+
+plt = plot_style.pyplot()
 HERE = os.path.dirname(os.path.abspath(__file__))
-
-
-def read(path):
-    """The rows of a CSV file as dicts, numbers as floats."""
-    def number(value):
-        try:
-            return float(value)
-        except ValueError:
-            return value
-    with open(path) as f:
-        return [{k: number(v) for k, v in row.items()} for row in csv.DictReader(f)]
-
-
-def last_membrane(run):
-    """The file of the last record of RUN/cell_0.pvd."""
-    datasets = ElementTree.parse(os.path.join(run, "cell_0.pvd")).getroot().iter("DataSet")
-    return os.path.join(run, list(datasets)[-1].get("file"))
 
 
 def shear_plane_cut(vtu):
     """The polylines where the membrane in VTU crosses z = 0, as (x, y) lists."""
-    reader = vtkXMLUnstructuredGridReader()
-    reader.SetFileName(vtu)
     surface = vtkGeometryFilter()
-    surface.SetInputConnection(reader.GetOutputPort())
+    surface.SetInputData(read_dataset(vtu))
     plane = vtkPlane()
     plane.SetOrigin(0.0, 0.0, 0.0)
     plane.SetNormal(0.0, 0.0, 1.0)
@@ -71,30 +51,33 @@ def shear_plane_cut(vtu):
 
 
 def main(directory, picture):
-    summary = read(os.path.join(directory, "shear_summary.csv"))
-    references = read(os.path.join(HERE, "results", "shear_references.csv"))
-    rate = None
-    with open(os.path.join(directory, "parameters.prm")) as f:
-        for line in f:
-            if line.strip().startswith("set Shear rate"):
-                rate = float(line.split("=")[1].split("#")[0])
+    study = Run(directory)
+    summary = study.table("shear_summary.csv")
+    references = read_table(os.path.join(HERE, "results", "shear_references.csv"))
+    rate = study.parameter("Shear rate")
+    ca = [r["capillary_number"] for r in summary]
     colours = plt.cm.viridis([i / max(1, len(summary) - 1) for i in range(len(summary))])
 
-    figure, (history, steady, shapes) = plt.subplots(1, 3, figsize=(14, 4.2),
+    figure, (history, steady, shapes) = plt.subplots(1, 3, figsize=(14, 4.4),
                                                     layout="constrained")
     for row, colour in zip(summary, colours):
-        run = os.path.join(directory, "ca_%g" % row["capillary_number"])
-        rows = read(os.path.join(run, "shear.csv"))
+        run = Run(study.path("ca_%g" % row["capillary_number"]))
+        rows = run.table("shear.csv")
         history.plot([rate * r["time"] for r in rows], [r["taylor_deformation"] for r in rows],
-                     "o-", ms=3, color=colour, label="Ca = %g" % row["capillary_number"])
-        for xs, ys in shear_plane_cut(last_membrane(run)):
+                     "o-", ms=2.5, color=colour, label="Ca = %g" % row["capillary_number"])
+        for xs, ys in shear_plane_cut(run.last("cell_0.pvd")):
             shapes.plot(xs, ys, "-", color=colour)
     history.set_xlabel("strain γ̇t")
     history.set_ylabel("Taylor deformation D")
     history.set_title("(a) D(t), each Ca")
-    history.legend(fontsize=7, ncol=2)
+    # The curves rise at small strain and stay flat: the legend right of
+    # them, in room made above the largest D.
+    strain = max(history.get_xlim())
+    ticks = [t for t in history.get_xticks() if 0 <= t <= strain]
+    history.set_xlim(right=1.55 * strain)
+    history.set_xticks(ticks)
+    history.legend(loc="center right")
 
-    ca = [r["capillary_number"] for r in summary]
     steady.plot(ca, [r["steady_deformation"] for r in summary], "o-", color="black",
                 label="rbc-ifem")
     markers = {"Doddi & Bagchi 2008": "s", "Ramanujan & Pozrikidis 1998": "^",
@@ -110,14 +93,19 @@ def main(directory, picture):
     steady.set_xlabel("capillary number Ca = μaγ̇/G")
     steady.set_ylabel("steady D")
     steady.set_title("(b) steady deformation")
-    steady.legend(fontsize=7)
+    steady.legend(loc="upper left")
 
     shapes.set_aspect("equal")
     shapes.set_xlabel("x [µm]")
     shapes.set_ylabel("y [µm]")
     shapes.set_title("(c) steady shapes, cut z = 0")
-    figure.savefig(picture, dpi=120)
-    print("wrote", picture)
+    # A key of the colours: one band per Ca, as in (a).
+    key = ScalarMappable(BoundaryNorm(range(len(ca) + 1), len(ca)), ListedColormap(colours))
+    bar = figure.colorbar(key, ax=shapes, ticks=[k + 0.5 for k in range(len(ca))],
+                          fraction=0.05, pad=0.03)
+    bar.ax.set_yticklabels(["%g" % c for c in ca])
+    bar.set_label("capillary number Ca")
+    plot_style.save(figure, picture)
 
 
 if __name__ == "__main__":

@@ -8,34 +8,30 @@ benchmarks/sphere_towed.sh.
 Two panels, (a) the towed sphere (walls moving past it at U = 1000 µm/s)
 and (b) the sphere held in Poiseuille flow, each on the fluid meshes the
 benchmark ran (OUTPUT_DIRECTORY/{towed,held}_{1,2,3}): the velocity u_x on the axis, from
-the last flow_*.pvtu, against the distance from the sphere's centre. The
+the last file of flow.pvd, against the distance from the sphere's centre. The
 sphere is held, so the plasma inside it should be at rest. Prints the mean
 u_x over the inner half of the diameter. Needs python3-matplotlib and
 python3-vtk9 (`scripts/install-packages.sh --docs`).
 """
-import csv
-import glob
 import os
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
 from vtkmodules.vtkFiltersCore import vtkProbeFilter
 from vtkmodules.vtkFiltersSources import vtkLineSource
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
-from vtk_picture import read
+import plot_style
+from rbc_ifem_run import Run
+
+plt = plot_style.pyplot()
 
 SAMPLES = 2001
 
 
 def sphere(run):
     """Centre x and radius of the sphere at the end of a run (cells.csv)."""
-    with open(os.path.join(run, "cells.csv")) as f:
-        last = list(csv.DictReader(f))[-1]
-    return float(last["frame_x"]), float(last["max_radius"])
+    last = run.table("cells.csv")[-1]
+    return last["frame_x"], last["max_radius"]
 
 
 def axial_velocity(run, length):
@@ -46,7 +42,7 @@ def axial_velocity(run, length):
     line.SetResolution(SAMPLES - 1)
     probe = vtkProbeFilter()
     probe.SetInputConnection(line.GetOutputPort())
-    probe.SetSourceData(read(sorted(glob.glob(os.path.join(run, "flow_*.pvtu")))[-1]))
+    probe.SetSourceData(run.dataset(run.last("flow.pvd")))
     probe.Update()
     data = probe.GetOutput()
     x = vtk_to_numpy(data.GetPoints().GetData())[:, 0]
@@ -55,14 +51,14 @@ def axial_velocity(run, length):
 
 
 def main(directory, picture):
-    figure, axes = plt.subplots(1, 2, figsize=(10, 3.8), sharey=False)
+    figure, axes = plt.subplots(1, 2, figsize=(10, 3.8), sharey=False, layout="constrained")
     for axis, case, title in zip(axes, ("towed", "held"),
                                  ("(a) towed: walls moving past at U = 1000 µm/s",
                                   "(b) held in Poiseuille flow, U_c = 1000 µm/s")):
         for level, h in ((1, 0.625), (2, 0.3125), (3, 0.15625)):
-            run = os.path.join(directory, f"{case}_{level}")
-            if not os.path.isdir(run):
+            if not os.path.isdir(os.path.join(directory, f"{case}_{level}")):
                 continue
+            run = Run(os.path.join(directory, f"{case}_{level}"))
             centre, radius = sphere(run)
             x, u = axial_velocity(run, 2 * centre)
             s = (x - centre) / radius
@@ -74,10 +70,9 @@ def main(directory, picture):
         axis.set_xlim(-3, 3)
         axis.set_xlabel("(x − centre) / a")
         axis.set_title(title, fontsize=10)
-        axis.legend(fontsize=8)
+        axis.legend()
     axes[0].set_ylabel("u_x on the axis [µm/s] (frame of the sphere)")
-    figure.tight_layout()
-    figure.savefig(picture, dpi=120)
+    plot_style.save(figure, picture)
 
 
 if __name__ == "__main__":

@@ -11,15 +11,13 @@ free sphere's U/U_c, and (b) how far Bohlin's (1960) K and Haberman &
 Sayre's (1958) K and U/U_c lie from it. Prints the table it plots. Needs
 python3-matplotlib.
 """
-import csv
-import io
 import subprocess
 import sys
 
-import matplotlib
+import plot_style
+from rbc_ifem_run import parse_table
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
+plt = plot_style.pyplot()
 
 REFINEMENTS = 4
 
@@ -42,8 +40,8 @@ def body_fitted(program, l):
     """K and U/U_c on the finest mesh of one run of the program."""
     text = subprocess.run([program, str(l), str(REFINEMENTS)], check=True,
                           capture_output=True, text=True).stdout
-    last = list(csv.DictReader(io.StringIO(text)))[-1]
-    return float(last["towed_drag_factor"]), float(last["velocity_ratio"])
+    last = parse_table(text)[-1]
+    return last["towed_drag_factor"], last["velocity_ratio"]
 
 
 def main(program, picture):
@@ -54,11 +52,13 @@ def main(program, picture):
         print(f"{l},{k:.5f},{u:.5f},{bohlin_drag_factor(l):.5f},"
               f"{haberman_sayre_drag_factor(l):.5f},{haberman_sayre_velocity_ratio(l):.5f}")
 
-    figure, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
+    figure, (left, right) = plt.subplots(1, 2, figsize=(10, 4), layout="constrained")
     l = [r[0] for r in rows]
     left.semilogy(l, [r[1] for r in rows], "k-o", ms=3, label="K, body-fitted")
     left.semilogy(l, [r[2] for r in rows], "b-s", ms=3, label="U/U$_c$, body-fitted")
     left.set_xlabel("λ = a/R")
+    left.set_ylabel("K = F/(6πμaU) and U/U$_c$")
+    plot_style.plain_log_ticks(left.yaxis)
     left.set_title("(a) towed drag factor K and free sphere's U/U$_c$")
     left.legend()
     left.grid(True, which="both", alpha=0.3)
@@ -77,9 +77,7 @@ def main(program, picture):
     right.set_ylabel("published / body-fitted − 1 [%]")
     right.set_title("(b) the published formulas against it")
     right.legend()
-    right.grid(True, alpha=0.3)
-    figure.tight_layout()
-    figure.savefig(picture, dpi=120)
+    plot_style.save(figure, picture)
 
 
 if __name__ == "__main__":

@@ -10,22 +10,16 @@ The experiment file has the columns force, transverse_diameter,
 axial_diameter and their low/high ends (doc/results/mills2004_stretching.csv).
 Needs python3-matplotlib (`scripts/install-packages.sh --docs`).
 """
-import csv
 import sys
 
-import matplotlib
+import plot_style
+from rbc_ifem_run import read_table
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
-
-
-def read(path):
-    with open(path) as f:
-        return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+plt = plot_style.pyplot()
 
 
 def plot_experiment(axes, path):
-    rows = read(path)
+    rows = read_table(path)
     force = [r["force"] for r in rows]
     for name, marker in (("axial", "s"), ("transverse", "o")):
         mean = [r[f"{name}_diameter"] for r in rows]
@@ -37,11 +31,11 @@ def plot_experiment(axes, path):
 
 
 def main(picture, experiment, runs):
-    figure, axes = plt.subplots(figsize=(6.5, 4.8))
+    figure, axes = plt.subplots(figsize=(6.5, 4.8), layout="constrained")
     if experiment:
         plot_experiment(axes, experiment)
     for (label, path), colour in zip(runs, ("tab:red", "tab:blue", "tab:green")):
-        rows = read(path)
+        rows = read_table(path)
         force = [r["force"] for r in rows]
         axes.plot(force, [r["axial_diameter"] for r in rows], "-", color=colour,
                   label=f"{label}: axial")
@@ -49,10 +43,8 @@ def main(picture, experiment, runs):
                   label=f"{label}: transverse")
     axes.set_xlabel("force on each bead F [pN]")
     axes.set_ylabel("diameter [µm]")
-    axes.grid(alpha=0.3)
-    axes.legend(fontsize=8)
-    figure.tight_layout()
-    figure.savefig(picture, dpi=120)
+    axes.legend()
+    plot_style.save(figure, picture)
 
 
 if __name__ == "__main__":

@@ -10,16 +10,16 @@ python3-matplotlib (`scripts/install-packages.sh --docs`).
 """
 import sys
 
-import matplotlib
+import plot_style
+from rbc_ifem_run import Run
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
-from tables import read
+plt = plot_style.pyplot()
 
 
 def main(directory, picture):
-    dm = read(directory + "/dm.csv")
-    rows = read(directory + "/cells.csv")
+    run = Run(directory)
+    dm = run.table("dm.csv")
+    rows = run.table("cells.csv")
     cells = sorted({int(r["cell"]) for r in rows})
     figure, (uptake, shape, gaps) = plt.subplots(1, 3, figsize=(14, 3.8),
                                                  layout="constrained")
@@ -31,6 +31,7 @@ def main(directory, picture):
     for c in cells:
         per_cell.plot(t_dm, [r[f"dm_cell_{c}"] for r in dm], ".--", label=f"cell {c}")
     per_cell.set_ylabel("DM per cell [µm³ s⁻¹ Torr⁻¹]")
+    per_cell.grid(False)
     lines = uptake.get_lines() + per_cell.get_lines()
     uptake.legend(lines, [line.get_label() for line in lines], fontsize=7, ncol=2)
     uptake.set_title("(a) diffusing capacity")
@@ -49,12 +50,11 @@ def main(directory, picture):
     gaps.plot([1e3 * t for t in times], smallest, "o-", label="between cells")
     gaps.plot([1e3 * t for t in times], wall, "s-", label="to the wall")
     gaps.set_ylabel("smallest gap [µm]")
-    gaps.legend(fontsize=8)
+    gaps.legend()
     gaps.set_title("(c) gaps")
     for axes in (uptake, shape, gaps):
         axes.set_xlabel("time [ms]")
-        axes.grid(alpha=0.3)
-    figure.savefig(picture, dpi=150)
+    plot_style.save(figure, picture)
 
 
 if __name__ == "__main__":

@@ -1,41 +1,67 @@
 #!/usr/bin/env python3
 """Render an `Experiment = diffusion` run to a PNG.
 
-    xvfb-run -a python3 doc/render_diffusion.py OUTPUT_DIRECTORY PICTURE.png
+    xvfb-run -a /usr/bin/python3 doc/render_diffusion.py OUTPUT_DIRECTORY PICTURE.png
 
 Left: the CO partial pressure P on the mid-plane z = 0 of the capillary,
-wall and gas layer (P = P_A on the outside, 0 on the membranes). Right: the
-membranes coloured by the CO flux density into each cell, the paper's
-Fig. 4f. Needs python3-vtk9 (`scripts/install-packages.sh --docs`).
+wall and gas layer (P = P_A on the outside, 0 on the membranes), the
+regions named and their borders drawn, the membranes outlined in white.
+Right: the membranes coloured by the CO flux density λ into each cell
+(doc/diffusion.md), the paper's Fig. 4f. Both colour scales start at 0:
+P and λ are ≥ 0, their small negative values are undershoot of the
+discretisation. Needs python3-vtk9 (`scripts/install-packages.sh --docs`).
 """
 import sys
 
 import vtk
 
-from vtk_picture import actor, outer_surface, point_camera, read, save_png, scalar_bar
+from rbc_ifem_run import Run
+from vtk_picture import (FLUX_UNIT, actor, legend, non_negative_range, parallel_camera,
+                         rainbow, save_png, scale_bar, smooth_surface, world_label)
+
+SIZE = (1600, 680)
+LEGEND = 0.2  # of the window's height, under both views
 
 
-def main(directory, picture):
-    field = read(directory + "/diffusion_0000.pvtu")
-    membranes = read(directory + "/diffusion_membranes_0000.vtu")
-    pressure_range = field.GetPointData().GetArray("co_pressure").GetRange()
-    flux_range = membranes.GetPointData().GetArray("co_flux").GetRange()
-
-    rainbow = vtk.vtkLookupTable()
-    rainbow.SetHueRange(0.667, 0.0)
-    rainbow.Build()
-
+def mid_plane():
     plane = vtk.vtkPlane()
     plane.SetOrigin(0, 0, 1e-3)  # off the mesh faces that lie in z = 0
     plane.SetNormal(0, 0, 1)
+    return plane
+
+
+def lines(segments, colour, width):
+    """An actor of straight SEGMENTS ((x, y, z), (x, y, z)) in the scene."""
+    points, cells = vtk.vtkPoints(), vtk.vtkCellArray()
+    for a, b in segments:
+        cells.InsertNextCell(2)
+        cells.InsertCellPoint(points.InsertNextPoint(*a))
+        cells.InsertCellPoint(points.InsertNextPoint(*b))
+    data = vtk.vtkPolyData()
+    data.SetPoints(points)
+    data.SetLines(cells)
+    mapper = vtk.vtkPolyDataMapper()
+    mapper.SetInputData(data)
+    result = vtk.vtkActor()
+    result.SetMapper(mapper)
+    result.GetProperty().SetColor(*colour)
+    result.GetProperty().SetLineWidth(width)
+    return result
+
+
+def pressure_view(run, field, membranes, p_alveolar):
+    length = run.parameter("Capillary length")
+    lumen = run.parameter("Capillary radius")
+    wall = lumen + run.parameter("Wall thickness")
+    outside = wall + run.parameter("Gas layer thickness")
+    colours = rainbow(0, p_alveolar)
+
     cut = vtk.vtkCutter()
     cut.SetInputData(field)
-    cut.SetCutFunction(plane)
-    membrane_source = vtk.vtkTrivialProducer()  # held: VTK does not keep it
-    membrane_source.SetOutput(membranes)
+    cut.SetCutFunction(mid_plane())
     outline = vtk.vtkCutter()
-    outline.SetInputConnection(membrane_source.GetOutputPort())
-    outline.SetCutFunction(plane)
+    outline.SetInputData(membranes)
+    outline.SetCutFunction(mid_plane())
     outline_mapper = vtk.vtkPolyDataMapper()
     outline_mapper.SetInputConnection(outline.GetOutputPort())
     outline_mapper.ScalarVisibilityOff()
@@ -44,22 +70,49 @@ def main(directory, picture):
     outline_actor.GetProperty().SetColor(1, 1, 1)
     outline_actor.GetProperty().SetLineWidth(2)
 
-    left = vtk.vtkRenderer()
-    left.SetViewport(0, 0, 0.5, 1)
-    left.SetBackground(1, 1, 1)
-    left.AddActor(actor(cut, "co_pressure", pressure_range, rainbow))
-    left.AddActor(outline_actor)
-    left.AddActor2D(scalar_bar(rainbow, "CO partial pressure P [Torr]"))
+    renderer = vtk.vtkRenderer()
+    renderer.SetViewport(0, LEGEND, 0.5, 1)
+    renderer.SetBackground(1, 1, 1)
+    renderer.AddActor(actor(cut, "co_pressure", (0, p_alveolar), colours, flat=True))
+    renderer.AddActor(outline_actor)
+    # The borders of lumen, wall and gas layer, and names beside them.
+    z = 0.01
+    renderer.AddActor(lines([((0, s * r, z), (length, s * r, z)) for s in (-1, 1) for r in (lumen, wall)],
+                            (0.15, 0.15, 0.15), 1.5))
+    for s in (-1, 1):
+        world_label(renderer, "gas layer", (length + 0.5, s * (wall + outside) / 2, z), 18, "left")
+        world_label(renderer, "vessel wall", (length + 0.5, s * (lumen + wall) / 2, z), 18, "left")
+    world_label(renderer, "plasma and", (length + 0.5, 0.7, z), 18, "left")
+    world_label(renderer, "red cells", (length + 0.5, -0.7, z), 18, "left")
+    parallel_camera(renderer, (length / 2 + 3.6, 0, 0), (0, 0, -1), (0, 1, 0), 2 * outside + 2)
+    scale_bar(renderer, 5, SIZE, x=0.78, y=0.04)
+    bar = legend(colours, "CO partial pressure P [Torr]", (0, 0, 0.5, LEGEND), 0.7, "%.2g")
+    return renderer, bar
 
-    right = vtk.vtkRenderer()
-    right.SetViewport(0.5, 0, 1, 1)
-    right.SetBackground(1, 1, 1)
-    right.AddActor(actor(outer_surface(membranes), "co_flux", flux_range, rainbow))
-    right.AddActor2D(scalar_bar(rainbow, "CO flux density into the cell [µm/s] at P_A = 1 Torr"))
 
-    point_camera(left, focal_point=(10, 0, 0), position=(10, 0, 60), view_up=(0, 1, 0), zoom=1.25)
-    point_camera(right, focal_point=(10, 0, 0), position=(-8, 14, 22), view_up=(0, 1, 0), zoom=1.15)
-    save_png([left, right], picture, size=(1600, 560))
+def flux_view(membranes, p_alveolar):
+    low, high = non_negative_range(membranes.GetPointData().GetArray("co_flux"))
+    colours = rainbow(low, high)
+    renderer = vtk.vtkRenderer()
+    renderer.SetViewport(0.5, LEGEND, 1, 1)
+    renderer.SetBackground(1, 1, 1)
+    renderer.AddActor(actor(smooth_surface(membranes), "co_flux", (low, high), colours))
+    x0, x1, *_ = membranes.GetBounds()
+    parallel_camera(renderer, ((x0 + x1) / 2, 0, 0), (18, -14, -22), (0, 1, 0), 14)
+    scale_bar(renderer, 5, SIZE, x=0.72, y=0.04)
+    bar = legend(colours, f"CO flux density λ into the cell [{FLUX_UNIT}], P_A = {p_alveolar:g} Torr",
+                 (0.5, 0, 1, LEGEND), 0.7, "%.2g")
+    return renderer, bar
+
+
+def main(directory, picture):
+    run = Run(directory)
+    field = run.dataset(run.series("diffusion.pvd")[0][1])
+    membranes = run.dataset(run.series("diffusion_membranes.pvd")[0][1])
+    p_alveolar = run.parameter("Alveolar pressure")
+    left, left_bar = pressure_view(run, field, membranes, p_alveolar)
+    right, right_bar = flux_view(membranes, p_alveolar)
+    save_png([left, right, left_bar, right_bar], picture, SIZE)
 
 
 if __name__ == "__main__":

@@ -1,62 +1,48 @@
 #!/usr/bin/env python3
 """Render the last field of an `Experiment = flow` run to a PNG.
 
-    xvfb-run -a python3 doc/render_flow.py OUTPUT_DIRECTORY PICTURE.png
+    xvfb-run -a /usr/bin/python3 doc/render_flow.py OUTPUT_DIRECTORY PICTURE.png
 
-Shows the axial velocity on the mid-plane z = 0 of the capillary, with
-velocity arrows along three cross-sections: the Poiseuille parabola. Needs
-python3-vtk9 (`scripts/install-packages.sh --docs`).
+Top: the axial velocity on the mid-plane z = 0 of the capillary, with
+velocity arrows along three cross-sections: the Poiseuille parabola.
+Bottom: the plasma pressure on the same plane, falling linearly along the
+capillary (pN/µm² = Pa, doc/design.md). Needs python3-vtk9
+(`scripts/install-packages.sh --docs`).
 """
-import re
 import sys
 
 import vtk
 
-from vtk_picture import point_camera, read, save_png, scalar_bar
+from rbc_ifem_run import Run
+from vtk_picture import (actor, label, legend, non_negative_range, parallel_camera, rainbow,
+                         save_png, scale_bar)
+
+SIZE = (1000, 900)
+VIEW, BAR = 0.4, 0.1  # heights of each view and of its colour bar, of the window's
 
 
-def last_field(directory):
-    """The file of the last entry of DIRECTORY/flow.pvd."""
-    with open(directory + "/flow.pvd") as pvd:
-        files = re.findall(r'file="([^"]+)"', pvd.read())
-    return directory + "/" + files[-1]
-
-
-def main(directory, picture):
-    field = read(last_field(directory))
-    field.GetPointData().SetActiveVectors("velocity")
-
+def mid_plane_cut(field):
     plane = vtk.vtkPlane()
     plane.SetOrigin(0, 0, 1e-3)  # off the mesh faces that lie in z = 0
     plane.SetNormal(0, 0, 1)
     cut = vtk.vtkCutter()
     cut.SetInputData(field)
     cut.SetCutFunction(plane)
-
     cut.Update()
-    top = cut.GetOutput().GetPointData().GetArray("velocity").GetRange(0)[1]
+    return cut
 
-    colours = vtk.vtkLookupTable()
-    colours.SetHueRange(0.667, 0.0)
-    colours.Build()
-    mapper = vtk.vtkDataSetMapper()
-    mapper.SetInputConnection(cut.GetOutputPort())
-    mapper.SetScalarModeToUsePointFieldData()
-    mapper.ColorByArrayComponent("velocity", 0)
-    mapper.SetScalarRange(0, top)
-    mapper.SetLookupTable(colours)
-    plane_actor = vtk.vtkActor()
-    plane_actor.SetMapper(mapper)
 
-    # Arrows on three lines across the capillary, at x = 5, 10, 15 µm.
-    arrows = vtk.vtkAppendPolyData()
+def arrows(field, radius, top, xs=(5.0, 10.0, 15.0)):
+    """Velocity arrows on lines across the capillary at XS, the longest
+    (TOP) 4 µm long."""
+    append = vtk.vtkAppendPolyData()
     arrow = vtk.vtkArrowSource()  # held here: VTK does not keep it alive
     arrow.SetTipRadius(0.06)
     arrow.SetShaftRadius(0.02)
-    for x in (5.0, 10.0, 15.0):
+    for x in xs:
         line = vtk.vtkLineSource()
-        line.SetPoint1(x, -4.99, 1e-3)
-        line.SetPoint2(x, 4.99, 1e-3)
+        line.SetPoint1(x, -0.998 * radius, 1e-3)
+        line.SetPoint2(x, 0.998 * radius, 1e-3)
         line.SetResolution(12)
         probe = vtk.vtkProbeFilter()
         probe.SetInputConnection(line.GetOutputPort())
@@ -70,22 +56,55 @@ def main(directory, picture):
         glyph.SetScaleModeToScaleByVector()
         glyph.SetScaleFactor(4.0 / top)
         glyph.Update()
-        arrows.AddInputData(glyph.GetOutput())
-    arrow_mapper = vtk.vtkPolyDataMapper()
-    arrow_mapper.SetInputConnection(arrows.GetOutputPort())
-    arrow_mapper.ScalarVisibilityOff()
-    arrow_actor = vtk.vtkActor()
-    arrow_actor.SetMapper(arrow_mapper)
-    arrow_actor.GetProperty().SetColor(0, 0, 0)
+        append.AddInputData(glyph.GetOutput())
+    append.Update()
+    mapper = vtk.vtkPolyDataMapper()
+    mapper.SetInputData(append.GetOutput())
+    mapper.ScalarVisibilityOff()
+    result = vtk.vtkActor()
+    result.SetMapper(mapper)
+    result.GetProperty().SetColor(0, 0, 0)
+    return result
 
+
+def view(bottom, length, radius):
     renderer = vtk.vtkRenderer()
     renderer.SetBackground(1, 1, 1)
-    renderer.AddActor(plane_actor)
-    renderer.AddActor(arrow_actor)
-    renderer.AddActor2D(scalar_bar(colours, "axial velocity [µm/s]", left=0.25, width=0.5))
-    point_camera(renderer, focal_point=(10, 0, 0), position=(10, 0, 50),
-             view_up=(0, 1, 0), zoom=1.3)
-    save_png([renderer], picture, size=(1200, 600))
+    renderer.SetViewport(0, bottom, 1, bottom + VIEW)
+    parallel_camera(renderer, (length / 2, 0, 0), (0, 0, -1), (0, 1, 0), 2 * radius + 3)
+    return renderer
+
+
+def main(directory, picture):
+    run = Run(directory)
+    time, file = run.series("flow.pvd")[-1]
+    field = run.dataset(file)
+    field.GetPointData().SetActiveVectors("velocity")
+    length, radius = run.parameter("Capillary length"), run.parameter("Capillary radius")
+    cut = mid_plane_cut(field)
+    data = cut.GetOutput().GetPointData()
+
+    _, top = non_negative_range(data.GetArray("velocity"), 0)
+    speed = rainbow(0, top)
+    upper = view(BAR + VIEW + BAR, length, radius)
+    upper.AddActor(actor(cut, "velocity", (0, top), speed, component=0, flat=True))
+    upper.AddActor(arrows(field, radius, top))
+    label(upper, f"axial velocity u_x, t = {1e3 * time:g} ms, flow →", 0.02, 0.92)
+    upper.ResetCameraClippingRange()
+    scale_bar(upper, 5, SIZE, x=0.02, y=0.05)
+
+    low, high = non_negative_range(data.GetArray("pressure"))
+    pressure = rainbow(low, high)
+    lower = view(BAR, length, radius)
+    lower.AddActor(actor(cut, "pressure", (low, high), pressure, flat=True))
+    label(lower, "plasma pressure p", 0.02, 0.92)
+    lower.ResetCameraClippingRange()
+    scale_bar(lower, 5, SIZE, x=0.02, y=0.05)
+
+    save_png([upper, legend(speed, "axial velocity u_x [µm/s]", (0, BAR + VIEW, 1, 2 * BAR + VIEW), 0.6),
+              lower, legend(pressure, "plasma pressure p [Pa]", (0, 0, 1, BAR), 0.6)],
+             picture, SIZE)
+
 
 if __name__ == "__main__":
     if len(sys.argv) != 3:

@@ -3,72 +3,50 @@
 
     xvfb-run -a /usr/bin/python3 doc/render_stretch.py OUTPUT_DIRECTORY PICTURE.png [N ...]
 
-Shows the equilibria N (default: the first, middle and last of stretch.pvd)
+Shows the equilibria N of stretch.pvd (default: the first, middle and last)
 seen obliquely from above, the beads pulling along x, coloured by the
-displacement from the reference shape. Needs python3-vtk9
+magnitude of the displacement from the reference shape, all on one scale
+of length (the 5 µm bar) and of colour. Needs python3-vtk9
 (`scripts/install-packages.sh --docs`).
 """
-import re
 import sys
 
 import vtk
 
-from vtk_picture import actor, outer_surface, point_camera, read, save_png, scalar_bar
+from rbc_ifem_run import Run
+from vtk_picture import (actor, label, legend, parallel_camera, rainbow, save_png, scale_bar,
+                         smooth_surface)
 
-
-def equilibria(directory):
-    """(force, file) of every entry of DIRECTORY/stretch.pvd."""
-    with open(directory + "/stretch.pvd") as pvd:
-        entries = re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', pvd.read())
-    return [(float(force), directory + "/" + name) for force, name in entries]
+SIZE = (1350, 470)
+LEGEND = 0.24  # of the window's height
 
 
 def main(directory, picture, chosen):
-    entries = equilibria(directory)
+    run = Run(directory)
+    entries = run.series("stretch.pvd")  # (bead force [pN], file)
     if not chosen:
         chosen = [0, len(entries) // 2, len(entries) - 1]
-    shapes = [(entries[k][0], read(entries[k][1])) for k in chosen]
+    shapes = [(entries[k][0], run.dataset(entries[k][1])) for k in chosen]
     largest = max(s.GetPointData().GetArray("displacement").GetMaxNorm() for _, s in shapes)
+    colours = rainbow(0, largest, vector=True)
+    widest = max(s.GetBounds()[1] - s.GetBounds()[0] for _, s in shapes)
 
-    colours = vtk.vtkLookupTable()
-    colours.SetHueRange(0.667, 0.0)
-    colours.SetVectorModeToMagnitude()
-    colours.SetRange(0, largest)
-    colours.Build()
-
-    renderers, keep = [], []
+    renderers = []
     for k, (force, shape) in enumerate(shapes):
-        shape.GetPointData().SetActiveVectors("displacement")
-        surface = outer_surface(shape)
-        keep.append(surface)
-        membrane = actor(surface, "displacement", (0, largest), colours)
-        membrane.GetMapper().SetColorModeToMapScalars()
-        membrane.GetMapper().GetLookupTable().SetVectorModeToMagnitude()
         renderer = vtk.vtkRenderer()
         renderer.SetBackground(1, 1, 1)
-        renderer.SetViewport(k / len(shapes), 0.18, (k + 1) / len(shapes), 1)
-        renderer.AddActor(membrane)
-        label = vtk.vtkTextActor()
-        label.SetInput(f"F = {force:g} pN")
-        label.GetTextProperty().SetColor(0, 0, 0)
-        label.GetTextProperty().SetFontSize(20)
-        label.SetPosition(20, 20)
-        renderer.AddActor2D(label)
-        point_camera(renderer, (0, 0, 0), (0, -12, 16), (0, 0, 1), 1.0)
+        renderer.SetViewport(k / len(shapes), LEGEND, (k + 1) / len(shapes), 1)
+        renderer.AddActor(actor(smooth_surface(shape), "displacement", (0, largest), colours))
+        label(renderer, f"F = {force:g} pN", 0.05, 0.88)
+        # The same scale in every view: the widest shape fills 90 % of a view's width.
+        aspect = (SIZE[1] * (1 - LEGEND)) / (SIZE[0] / len(shapes))
+        parallel_camera(renderer, (0, 0, 0), (0, 12, -16), (0, 0, 1), widest / 0.9 * aspect)
         renderers.append(renderer)
-    # The same distance for every view, so that the sizes compare.
-    for renderer in renderers[1:]:
-        renderer.SetActiveCamera(renderers[-1].GetActiveCamera())
-    renderers[0].SetActiveCamera(renderers[-1].GetActiveCamera())
+    scale_bar(renderers[0], 5, SIZE, x=0.05, y=0.06)
+    label(renderers[-1], "←  the beads pull along x  →", 0.95, 0.06, size=17, justify="right")
 
-    legend = vtk.vtkRenderer()
-    legend.SetBackground(1, 1, 1)
-    legend.SetViewport(0, 0, 1, 0.18)
-    bar = scalar_bar(colours, "displacement [µm]", left=0.25, width=0.5)
-    bar.SetPosition(0.25, 0.1)  # the legend's own viewport is low: use its height
-    bar.SetHeight(0.8)
-    legend.AddActor2D(bar)
-    save_png(renderers + [legend], picture, (1200, 460))
+    bar = legend(colours, "displacement from the reference shape [µm]", (0, 0, 1, LEGEND), 0.5)
+    save_png(renderers + [bar], picture, SIZE)
 
 
 if __name__ == "__main__":

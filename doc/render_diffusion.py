@@ -16,7 +16,7 @@ import sys
 import vtk
 
 from rbc_ifem_run import Run
-from vtk_picture import (FLUX_UNIT, actor, legend, non_negative_range, parallel_camera,
+from vtk_picture import (FLUX_UNIT, actor, solid_actor, legend, non_negative_range, parallel_camera,
                          rainbow, save_png, scale_bar, smooth_surface, world_label)
 
 SIZE = (1600, 680)
@@ -62,13 +62,7 @@ def pressure_view(run, field, membranes, p_alveolar):
     outline = vtk.vtkCutter()
     outline.SetInputData(membranes)
     outline.SetCutFunction(mid_plane())
-    outline_mapper = vtk.vtkPolyDataMapper()
-    outline_mapper.SetInputConnection(outline.GetOutputPort())
-    outline_mapper.ScalarVisibilityOff()
-    outline_actor = vtk.vtkActor()
-    outline_actor.SetMapper(outline_mapper)
-    outline_actor.GetProperty().SetColor(1, 1, 1)
-    outline_actor.GetProperty().SetLineWidth(2)
+    outline_actor = solid_actor(outline, (1, 1, 1), line_width=2)
 
     renderer = vtk.vtkRenderer()
     renderer.SetViewport(0, LEGEND, 0.5, 1)

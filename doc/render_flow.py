@@ -14,7 +14,7 @@ import sys
 import vtk
 
 from rbc_ifem_run import Run
-from vtk_picture import (actor, label, legend, non_negative_range, parallel_camera, rainbow,
+from vtk_picture import (actor, solid_actor, label, legend, non_negative_range, parallel_camera, rainbow,
                          save_png, scale_bar)
 
 SIZE = (1000, 900)
@@ -58,13 +58,7 @@ def arrows(field, radius, top, xs=(5.0, 10.0, 15.0)):
         glyph.Update()
         append.AddInputData(glyph.GetOutput())
     append.Update()
-    mapper = vtk.vtkPolyDataMapper()
-    mapper.SetInputData(append.GetOutput())
-    mapper.ScalarVisibilityOff()
-    result = vtk.vtkActor()
-    result.SetMapper(mapper)
-    result.GetProperty().SetColor(0, 0, 0)
-    return result
+    return solid_actor(append, (0, 0, 0))
 
 
 def view(bottom, length, radius):

@@ -162,6 +162,20 @@ def actor(surface, array=None, value_range=None, lookup_table=None, component=No
     return result
 
 
+def solid_actor(algorithm, colour, line_width=None):
+    """An actor that draws ALGORITHM's output in one COLOUR (arrows, outlines),
+    with lines LINE_WIDTH pixels wide if given."""
+    mapper = vtk.vtkPolyDataMapper()
+    mapper.SetInputConnection(algorithm.GetOutputPort())
+    mapper.ScalarVisibilityOff()
+    result = vtk.vtkActor()
+    result.SetMapper(mapper)
+    result.GetProperty().SetColor(*colour)
+    if line_width is not None:
+        result.GetProperty().SetLineWidth(line_width)
+    return result
+
+
 def nice_ticks(low, high, most=6):
     """Round numbers from LOW to HIGH, at most MOST of them, 1-2-2.5-5 apart."""
     if high <= low:

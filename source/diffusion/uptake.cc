@@ -86,6 +86,42 @@ namespace rbc_ifem
     }
   } // namespace
 
+  namespace
+  {
+    /// The diffusion mesh around @p surfaces and the CO diffusion problem
+    /// set up on it: what check_uptake_meshes() and solve_uptake() share.
+    struct UptakeSetup
+    {
+      UptakeSetup(const GeometryParameters  &geometry,
+                  const MeshParameters      &mesh_parameters,
+                  const DiffusionParameters &d,
+                  const std::vector<const Triangulation<2, 3> *> &surfaces,
+                  const MappingQ<2, 3>                           &mapping,
+                  const unsigned int band_refinements,
+                  const MPI_Comm     communicator,
+                  TimerOutput       &timer)
+        : mesh(communicator,
+               Triangulation<3>::none,
+               false,
+               parallel::shared::Triangulation<3>::partition_metis)
+      {
+        make_uptake_mesh(
+          mesh, geometry, mesh_parameters, surfaces, band_refinements, timer);
+        diffusion = set_up_diffusion(mesh,
+                                     geometry,
+                                     d,
+                                     surfaces,
+                                     mapping,
+                                     band_refinements,
+                                     communicator,
+                                     timer);
+      }
+
+      parallel::shared::Triangulation<3> mesh;
+      std::unique_ptr<CODiffusion>       diffusion;
+    };
+  } // namespace
+
   void
   check_uptake_meshes(const GeometryParameters  &geometry,
                       const MeshParameters      &mesh_parameters,
@@ -96,21 +132,14 @@ namespace rbc_ifem
                       const MPI_Comm     communicator,
                       TimerOutput       &timer)
   {
-    parallel::shared::Triangulation<3> mesh(
-      communicator,
-      Triangulation<3>::none,
-      false,
-      parallel::shared::Triangulation<3>::partition_metis);
-    make_uptake_mesh(
-      mesh, geometry, mesh_parameters, surfaces, band_refinements, timer);
-    set_up_diffusion(mesh,
-                     geometry,
-                     d,
-                     surfaces,
-                     mapping,
-                     band_refinements,
-                     communicator,
-                     timer);
+    UptakeSetup(geometry,
+                mesh_parameters,
+                d,
+                surfaces,
+                mapping,
+                band_refinements,
+                communicator,
+                timer);
   }
 
   Uptake
@@ -124,23 +153,17 @@ namespace rbc_ifem
                TimerOutput                                    &timer,
                const std::function<void(const CODiffusion &)> &write_fields)
   {
-    Timer                              clock;
-    parallel::shared::Triangulation<3> mesh(
-      communicator,
-      Triangulation<3>::none,
-      false,
-      parallel::shared::Triangulation<3>::partition_metis);
-    make_uptake_mesh(
-      mesh, geometry, mesh_parameters, surfaces, band_refinements, timer);
-    const auto   diffusion_problem = set_up_diffusion(mesh,
-                                                    geometry,
-                                                    d,
-                                                    surfaces,
-                                                    mapping,
-                                                    band_refinements,
-                                                    communicator,
-                                                    timer);
-    CODiffusion &diffusion         = *diffusion_problem;
+    Timer                                     clock;
+    const UptakeSetup                         setup(geometry,
+                            mesh_parameters,
+                            d,
+                            surfaces,
+                            mapping,
+                            band_refinements,
+                            communicator,
+                            timer);
+    const parallel::shared::Triangulation<3> &mesh      = setup.mesh;
+    CODiffusion                              &diffusion = *setup.diffusion;
     diffusion.assemble();
     diffusion.solve();
     if (write_fields)

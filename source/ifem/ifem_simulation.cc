@@ -113,6 +113,17 @@ namespace rbc_ifem
       return payload;
     }
 
+    /// The membranes @p surfaces as the uptake solve takes them.
+    std::vector<const Triangulation<2, 3> *>
+    pointers_to(
+      const std::vector<std::unique_ptr<Triangulation<2, 3>>> &surfaces)
+    {
+      std::vector<const Triangulation<2, 3> *> pointers;
+      for (const auto &surface : surfaces)
+        pointers.push_back(surface.get());
+      return pointers;
+    }
+
     /// The parameters a resumed run may change: how long it runs and what
     /// it reports, not what it computes.
     bool
@@ -405,13 +416,10 @@ namespace rbc_ifem
   {
     TimerOutput::Scope scope(timer, "diffusion: input check");
     const auto         surfaces = cells.current_surfaces();
-    std::vector<const Triangulation<2, 3> *> pointers;
-    for (const auto &surface : surfaces)
-      pointers.push_back(surface.get());
     check_uptake_meshes(parameters.geometry,
                         parameters.mesh,
                         parameters.diffusion,
-                        pointers,
+                        pointers_to(surfaces),
                         cells.surface_mapping(),
                         parameters.mesh.diffusion_band_refinements,
                         communicator,
@@ -421,16 +429,13 @@ namespace rbc_ifem
   double
   IFEMSimulation::solve_uptake(const unsigned int counter)
   {
-    const auto surfaces = cells.current_surfaces();
-    std::vector<const Triangulation<2, 3> *> pointers;
-    for (const auto &surface : surfaces)
-      pointers.push_back(surface.get());
+    const auto         surfaces  = cells.current_surfaces();
     const std::string &directory = parameters.output_directory;
     const Uptake       uptake =
       rbc_ifem::solve_uptake(parameters.geometry,
                              parameters.mesh,
                              parameters.diffusion,
-                             pointers,
+                             pointers_to(surfaces),
                              cells.surface_mapping(),
                              parameters.mesh.diffusion_band_refinements,
                              communicator,

@@ -319,15 +319,15 @@ namespace rbc_ifem
                "another. Raise the range or Cells/Surface refinements."
             << std::endl;
     if (spacing > 0.5 * mesh_size)
-      pcout << "  WARNING: the membrane point spacing " << spacing
-            << " µm exceeds half the fluid mesh size at the cells, h/2 = "
-            << 0.5 * mesh_size
-            << " µm (the paper's rule): raise Cells/Surface refinements (which "
-               "lowers the explicit-coupling estimate, so set Time/Time step = "
-               "auto or below 0.7 of the new one, and may need Mesh/Diffusion "
-               "band refinements raised: the run says so before it starts) or "
-               "lower Mesh/Fluid band refinements."
-            << std::endl;
+      pcout
+        << "  WARNING: the membrane point spacing " << spacing
+        << " µm exceeds half the fluid mesh size at the cells, h/2 = "
+        << 0.5 * mesh_size
+        << " µm (the paper's rule). To follow it, raise Cells/Surface "
+           "refinements and Mesh/Diffusion band refinements by one each and "
+           "set Time/Time step = auto (closer points lower the explicit-"
+           "coupling estimate), or lower Mesh/Fluid band refinements."
+        << std::endl;
   }
 
   StepReport
@@ -754,11 +754,17 @@ namespace rbc_ifem
         const double to_ml_min_mmhg    = 60e-12 * 1.000000142;
         const auto [first_time, first] = record.dm_history.front();
         const auto [last_time, last]   = record.dm_history.back();
-        pcout << "  DM at t = " << first_time << " s " << first
-              << ", at t = " << last_time << " s " << last << " µm³/(s Torr) ("
-              << std::showpos << 100. * (last / first - 1.) << std::noshowpos
-              << "%); in mL/(min mmHg) " << first * to_ml_min_mmhg << " and "
-              << last * to_ml_min_mmhg << std::endl;
+        if (record.dm_history.size() == 1)
+          pcout << "  DM at t = " << first_time << " s " << first
+                << " µm³/(s Torr), " << first * to_ml_min_mmhg
+                << " mL/(min mmHg)" << std::endl;
+        else
+          pcout << "  DM at t = " << first_time << " s " << first
+                << ", at t = " << last_time << " s " << last
+                << " µm³/(s Torr) (" << std::showpos
+                << 100. * (last / first - 1.) << std::noshowpos
+                << "%); in mL/(min mmHg) " << first * to_ml_min_mmhg << " and "
+                << last * to_ml_min_mmhg << std::endl;
       }
     const std::vector<CellShape> shapes = cells.shapes();
     double deformation = 0., volume_drift = 0., area_drift = 0.;

@@ -167,6 +167,7 @@ namespace rbc_ifem
       "force,axial_diameter,transverse_diameter,area,volume,iterations,residual");
     std::vector<std::pair<double, std::string>> shapes;
     std::vector<Vector<double>>                 equilibria;
+    Timer                                       clock;
     for (unsigned int step = 0; step <= s.n_force_steps; ++step)
       {
         const double   force = s.max_force * step / s.n_force_steps;
@@ -187,12 +188,17 @@ namespace rbc_ifem
             y_max = std::max(y_max, x[dofs[1]]);
           }
         const double area = membrane->area(x), volume = membrane->volume(x);
-        pcout << "  F = " << std::setw(6) << force << " pN: " << std::setw(5)
+        pcout << "  step " << step << " of " << s.n_force_steps
+              << ", F = " << std::setw(6) << force << " pN: " << std::setw(5)
               << report.iterations << " L-BFGS iterations, residual "
               << report.residual << " pN; axial " << x_max - x_min
               << " µm, transverse " << y_max - y_min << " µm, area "
               << area / membrane->reference_area() << " A0, volume "
-              << volume / membrane->reference_volume() << " V0" << std::endl;
+              << volume / membrane->reference_volume() << " V0  "
+              << time_left_text(clock.wall_time(),
+                                step + 1,
+                                s.n_force_steps - step)
+              << std::endl;
         table.add(force,
                   x_max - x_min,
                   y_max - y_min,

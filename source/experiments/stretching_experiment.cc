@@ -6,13 +6,12 @@
 #include <rbc_ifem/experiments/stretching_experiment.h>
 #include <rbc_ifem/geometry/cell_surface.h>
 #include <rbc_ifem/membrane/membrane_equilibrium.h>
+#include <rbc_ifem/membrane/optical_tweezers.h>
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
-#include <algorithm>
 #include <iomanip>
-#include <numeric>
 
 namespace rbc_ifem
 {
@@ -79,42 +78,6 @@ namespace rbc_ifem
     , stretching(stretching)
   {}
 
-  Vector<double>
-  StretchingExperiment::bead_forces() const
-  {
-    const Vector<double>     &X     = membrane->reference_positions();
-    const auto               &nodes = membrane->nodes();
-    const std::vector<double> areas = membrane->nodal_areas(X);
-    const double total = std::accumulate(areas.begin(), areas.end(), 0.);
-
-    // Nodes ordered by x; each patch takes nodes from its end until it
-    // holds the attached fraction of the area.
-    std::vector<unsigned int> order(nodes.size());
-    std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(),
-              order.end(),
-              [&](const unsigned int a, const unsigned int b) {
-                return X[nodes[a][0]] < X[nodes[b][0]];
-              });
-    Vector<double> f(X.size());
-    const double   wanted = stretching.attached_fraction * total;
-    for (const int side : {-1, 1})
-      {
-        std::vector<unsigned int> patch;
-        double                    held = 0.;
-        for (unsigned int k = 0; k < order.size() && held < wanted; ++k)
-          {
-            const unsigned int node =
-              side < 0 ? order[k] : order[order.size() - 1 - k];
-            patch.push_back(node);
-            held += areas[node];
-          }
-        for (const unsigned int node : patch)
-          f[nodes[node][0]] = side * areas[node] / held;
-      }
-    return f;
-  }
-
   void
   StretchingExperiment::setup()
   {
@@ -159,9 +122,10 @@ namespace rbc_ifem
   void
   StretchingExperiment::find_equilibria()
   {
-    const StretchingParameters &s          = stretching;
-    const Vector<double>        unit_force = bead_forces();
-    Vector<double>              x(membrane->reference_positions());
+    const StretchingParameters &s = stretching;
+    const Vector<double>        unit_force =
+      bead_forces(*membrane, stretching.attached_fraction);
+    Vector<double> x(membrane->reference_positions());
 
     CsvTable table(
       "force,axial_diameter,transverse_diameter,area,volume,iterations,residual");
@@ -179,20 +143,13 @@ namespace rbc_ifem
           report =
             find_equilibrium(*membrane, f, x, s.tolerance, s.max_iterations);
         }
-        double x_min = 1e300, x_max = -1e300, y_min = 1e300, y_max = -1e300;
-        for (const auto &dofs : membrane->nodes())
-          {
-            x_min = std::min(x_min, x[dofs[0]]);
-            x_max = std::max(x_max, x[dofs[0]]);
-            y_min = std::min(y_min, x[dofs[1]]);
-            y_max = std::max(y_max, x[dofs[1]]);
-          }
+        const StretchDiameters d = stretch_diameters(*membrane, x);
         const double area = membrane->area(x), volume = membrane->volume(x);
         pcout << "  step " << step << " of " << s.n_force_steps
               << ", F = " << std::setw(6) << force << " pN: " << std::setw(5)
               << report.iterations << " L-BFGS iterations, residual "
-              << report.residual << " pN; axial " << x_max - x_min
-              << " µm, transverse " << y_max - y_min << " µm, area "
+              << report.residual << " pN; axial " << d.axial
+              << " µm, transverse " << d.transverse << " µm, area "
               << area / membrane->reference_area() << " A0, volume "
               << volume / membrane->reference_volume() << " V0  "
               << time_left_text(clock.wall_time(),
@@ -200,8 +157,8 @@ namespace rbc_ifem
                                 s.n_force_steps - step)
               << std::endl;
         table.add(force,
-                  x_max - x_min,
-                  y_max - y_min,
+                  d.axial,
+                  d.transverse,
                   area,
                   volume,
                   report.iterations,

@@ -31,6 +31,23 @@ namespace rbc_ifem
   using namespace dealii;
 
   /**
+   * The membranes' cells are finer than the diffusion mesh around them:
+   * the multiplier then violates the inf-sup condition of the saddle point
+   * problem (with membrane cells 1.7 times smaller FGMRES no longer
+   * converges). The caller, who knows which parameters made the meshes,
+   * turns it into an InputError.
+   */
+  class MembranesFinerThanMesh : public std::runtime_error
+  {
+  public:
+    MembranesFinerThanMesh(const double membrane_cell_size,
+                           const double volume_cell_size);
+
+    const double membrane_cell_size; ///< mean membrane cell size [µm]
+    const double volume_cell_size;   ///< mean diffusion cell size there [µm]
+  };
+
+  /**
    * Steady CO diffusion into the red cells, the paper's Section 3.2:
    *
    *   -∇·(αD ∇P) = 0 in the volume mesh,  P = P_A on one boundary id,
@@ -60,23 +77,6 @@ namespace rbc_ifem
    * The volume mesh is a parallel::shared::Triangulation: every rank knows
    * every cell, so every rank can locate every membrane point.
    */
-  /**
-   * The membranes' cells are finer than the diffusion mesh around them:
-   * the multiplier then violates the inf-sup condition of the saddle point
-   * problem (with membrane cells 1.7 times smaller FGMRES no longer
-   * converges). The caller, who knows which parameters made the meshes,
-   * turns it into an InputError.
-   */
-  class MembranesFinerThanMesh : public std::runtime_error
-  {
-  public:
-    MembranesFinerThanMesh(const double membrane_cell_size,
-                           const double volume_cell_size);
-
-    const double membrane_cell_size; ///< mean membrane cell size [µm]
-    const double volume_cell_size;   ///< mean diffusion cell size there [µm]
-  };
-
   class CODiffusion
   {
   public:

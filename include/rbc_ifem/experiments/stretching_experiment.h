@@ -66,11 +66,6 @@ namespace rbc_ifem
     void
     find_equilibria();
 
-    /// The unit pulling force: +a_i/A_patch on the x DoFs of the right
-    /// patch, -a_i/A_patch on the left one.
-    Vector<double>
-    bead_forces() const;
-
     const StretchingParameters stretching;
     Triangulation<2, 3>        surface;
     std::unique_ptr<Membrane>  membrane;

@@ -78,6 +78,45 @@ namespace rbc_ifem
     return result;
   }
 
+  void
+  CellPopulation::linearize()
+  {
+    stiffnesses.clear();
+    for (const auto &force : cell_forces)
+      if (auto K = force->stiffness(x))
+        stiffnesses.push_back(std::move(K));
+  }
+
+  std::vector<Tensor<1, 3>>
+  CellPopulation::stiffness_product(
+    const std::vector<Tensor<1, 3>> &displacements) const
+  {
+    AssertDimension(displacements.size(), n_membrane_points);
+    std::vector<Vector<double>> v, Kv;
+    auto                        point = displacements.begin();
+    for (unsigned int c = 0; c < size(); ++c)
+      {
+        v.emplace_back(x[c].size());
+        Kv.emplace_back(x[c].size());
+        for (const auto &dofs : cell_membranes[c]->nodes())
+          {
+            for (unsigned int d = 0; d < 3; ++d)
+              v[c][dofs[d]] = (*point)[d];
+            ++point;
+          }
+      }
+    for (const auto &K : stiffnesses)
+      K->add_product(v, Kv);
+
+    std::vector<Tensor<1, 3>> result;
+    result.reserve(n_membrane_points);
+    for (unsigned int c = 0; c < size(); ++c)
+      for (const auto &dofs : cell_membranes[c]->nodes())
+        result.push_back(
+          Tensor<1, 3>({Kv[c][dofs[0]], Kv[c][dofs[1]], Kv[c][dofs[2]]}));
+    return result;
+  }
+
   Tensor<1, 3>
   CellPopulation::held_force() const
   {

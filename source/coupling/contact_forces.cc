@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <tuple>
 
 namespace rbc_ifem
 {
@@ -29,6 +30,45 @@ namespace rbc_ifem
     {
       return Point<3>(x[dofs[0]], x[dofs[1]], x[dofs[2]]);
     }
+
+    /**
+     * K of point forces: 3 × 3 blocks on single points (a wall) and on
+     * pairs of points i, j whose energy depends on x_i - x_j (K_ii = K_jj =
+     * H, K_ij = K_ji = -H).
+     */
+    class PointBlockStiffness : public CellForceStiffness
+    {
+    public:
+      /// A point: its cell and its node's DoFs.
+      using PointDoFs =
+        std::pair<unsigned int, std::array<types::global_dof_index, 3>>;
+
+      void
+      add_product(const std::vector<Vector<double>> &v,
+                  std::vector<Vector<double>>       &results) const override
+      {
+        const auto at = [&](const PointDoFs &point) {
+          const auto &[c, dofs] = point;
+          return Tensor<1, 3>({v[c][dofs[0]], v[c][dofs[1]], v[c][dofs[2]]});
+        };
+        const auto add = [&](const PointDoFs &point, const Tensor<1, 3> &f) {
+          const auto &[c, dofs] = point;
+          for (unsigned int d = 0; d < 3; ++d)
+            results[c][dofs[d]] += f[d];
+        };
+        for (const auto &[point, H] : single)
+          add(point, H * at(point));
+        for (const auto &[i, j, H] : pairs)
+          {
+            const Tensor<1, 3> f = H * (at(i) - at(j));
+            add(i, f);
+            add(j, -f);
+          }
+      }
+
+      std::vector<std::pair<PointDoFs, Tensor<2, 3>>>             single;
+      std::vector<std::tuple<PointDoFs, PointDoFs, Tensor<2, 3>>> pairs;
+    };
 
     void
     add_node_force(Vector<double>                               &forces,
@@ -69,6 +109,14 @@ namespace rbc_ifem
     return {p0 * excess * excess, -2. * p0 * excess * range / (h * h)};
   }
 
+  double
+  RepulsivePotential::pressure_curvature(const double h) const
+  {
+    const double excess = range / h - 1.;
+    return 2. * p0 * range * range / std::pow(h, 4) +
+           4. * p0 * excess * range / std::pow(h, 3);
+  }
+
   MorsePotential::MorsePotential(const double well_depth,
                                  const double width,
                                  const double distance,
@@ -103,6 +151,13 @@ namespace rbc_ifem
             2. * beta * beta * depth * (e - 2. * e * e)};
   }
 
+  double
+  MorsePotential::pressure_curvature(const double h) const
+  {
+    const double e = std::exp(beta * (distance - h));
+    return 2. * beta * beta * beta * depth * (4. * e * e - e);
+  }
+
   MembraneInteraction::MembraneInteraction(
     const std::vector<std::unique_ptr<Membrane>> &membranes,
     std::unique_ptr<GapPotential>                 potential,
@@ -131,9 +186,20 @@ namespace rbc_ifem
             dpsi - at_cutoff.second};
   }
 
-  CellForceReport
-  MembraneInteraction::add_forces(const std::vector<Vector<double>> &x,
-                                  std::vector<Vector<double>> &forces) const
+  double
+  MembraneInteraction::pair_density_curvature(const double r) const
+  {
+    // ψ = p/(2πr): ψ'' = (p'' r² - 2 p' r + 2 p)/(2π r³).
+    const auto [p, dp] = potential->pressure(r);
+    const double d2p   = potential->pressure_curvature(r);
+    return (d2p * r * r - 2. * dp * r + 2. * p) /
+           (2. * numbers::PI * r * r * r);
+  }
+
+  template <typename PairFunction>
+  void
+  MembraneInteraction::for_each_close_pair(const std::vector<Vector<double>> &x,
+                                           const PairFunction &f) const
   {
     // Every point with its cell and node, in one list for the bins: in a
     // periodic segment each where it lies in the segment, and those within
@@ -163,15 +229,29 @@ namespace rbc_ifem
             }
         }
 
-    CellForceReport report;
     PointBins(points, cutoff)
       .for_each_close_pair([&](const unsigned int i, const unsigned int j) {
         const auto [ci, ni] = owner[i];
         const auto [cj, nj] = owner[j];
         if (ci == cj || (image[i] && image[j]))
           return;
-        const Tensor<1, 3> separation = points[i] - points[j];
-        const double       r          = separation.norm();
+        f(ci, ni, cj, nj, points[i] - points[j]);
+      });
+  }
+
+  CellForceReport
+  MembraneInteraction::add_forces(const std::vector<Vector<double>> &x,
+                                  std::vector<Vector<double>> &forces) const
+  {
+    CellForceReport report;
+    for_each_close_pair(
+      x,
+      [&](const unsigned int  ci,
+          const unsigned int  ni,
+          const unsigned int  cj,
+          const unsigned int  nj,
+          const Tensor<1, 3> &separation) {
+        const double r      = separation.norm();
         const double weight = reference_areas[ci][ni] * reference_areas[cj][nj];
         const auto [psi, dpsi] = pair_density(r);
         report.energy += weight * psi;
@@ -180,6 +260,37 @@ namespace rbc_ifem
         add_node_force(forces[cj], membranes[cj]->nodes()[nj], -force);
       });
     return report;
+  }
+
+  std::unique_ptr<CellForceStiffness>
+  MembraneInteraction::stiffness(const std::vector<Vector<double>> &x) const
+  {
+    // E = w ψ(r): ∂²E/∂x_i² = w [ψ'' n nᵀ + ψ'/r (I - n nᵀ)], n = (x_i -
+    // x_j)/r, and the opposite on the pair's cross terms.
+    auto result = std::make_unique<PointBlockStiffness>();
+    for_each_close_pair(
+      x,
+      [&](const unsigned int  ci,
+          const unsigned int  ni,
+          const unsigned int  cj,
+          const unsigned int  nj,
+          const Tensor<1, 3> &separation) {
+        const double r      = separation.norm();
+        const double weight = reference_areas[ci][ni] * reference_areas[cj][nj];
+        const Tensor<1, 3> n      = separation / r;
+        const double       dpsi   = pair_density(r).second;
+        const Tensor<2, 3> normal = outer_product(n, n);
+        Tensor<2, 3>       identity;
+        for (unsigned int d = 0; d < 3; ++d)
+          identity[d][d] = 1.;
+        const Tensor<2, 3> H = weight * (pair_density_curvature(r) * normal +
+                                         dpsi / r * (identity - normal));
+        result->pairs.emplace_back(
+          PointBlockStiffness::PointDoFs(ci, membranes[ci]->nodes()[ni]),
+          PointBlockStiffness::PointDoFs(cj, membranes[cj]->nodes()[nj]),
+          H);
+      });
+    return result;
   }
 
   WallRepulsion::WallRepulsion(
@@ -238,6 +349,36 @@ namespace rbc_ifem
         report.external_force += force;
       }
     return report;
+  }
+
+  std::unique_ptr<CellForceStiffness>
+  WallRepulsion::stiffness(const std::vector<Vector<double>> &x) const
+  {
+    // E = a φ(d), d = R - ρ: ∇d = -e (e = (0, y, z)/ρ), ∂²d = -(P - e eᵀ)/ρ
+    // with P the projection on y, z; φ' = -p, φ'' = -p'.
+    auto result = std::make_unique<PointBlockStiffness>();
+    for (unsigned int c = 0; c < membranes.size(); ++c)
+      {
+        const auto &nodes = membranes[c]->nodes();
+        for (unsigned int n = 0; n < nodes.size(); ++n)
+          {
+            const Point<3> p   = node_position(x[c], nodes[n]);
+            const double   rho = std::hypot(p[1], p[2]);
+            const double   gap = radius - rho;
+            if (gap >= potential.cutoff() || gap <= 0.)
+              continue;
+            const auto [pressure, dp] = potential.pressure(gap);
+            const Tensor<1, 3> e({0., p[1] / rho, p[2] / rho});
+            Tensor<2, 3>       plane;
+            plane[1][1] = plane[2][2] = 1.;
+            const Tensor<2, 3> radial = outer_product(e, e);
+            result->single.emplace_back(
+              PointBlockStiffness::PointDoFs(c, nodes[n]),
+              reference_areas[c][n] *
+                (-dp * radial + pressure / rho * (plane - radial)));
+          }
+      }
+    return result;
   }
 
   unsigned int
@@ -309,6 +450,12 @@ namespace rbc_ifem
         report.external_force += cell_forces[c];
       }
     return report;
+  }
+
+  std::unique_ptr<CellForceStiffness>
+  PushingForce::stiffness(const std::vector<Vector<double>> &) const
+  {
+    return nullptr; // E is linear in x
   }
 
   void

@@ -22,10 +22,61 @@ namespace rbc_ifem
     return report;
   }
 
+  namespace
+  {
+    /// The membranes' K, one MembraneStiffness per cell.
+    class ElasticityStiffness : public CellForceStiffness
+    {
+    public:
+      explicit ElasticityStiffness(const unsigned int n_cells)
+        : cells(n_cells)
+      {}
+
+      void
+      add_product(const std::vector<Vector<double>> &v,
+                  std::vector<Vector<double>>       &results) const override
+      {
+        for (unsigned int c = 0; c < cells.size(); ++c)
+          cells[c].vmult_add(results[c], v[c]);
+      }
+
+      std::vector<MembraneStiffness> cells;
+    };
+
+    /// K = k I of springs of stiffness k.
+    class SpringStiffness : public CellForceStiffness
+    {
+    public:
+      explicit SpringStiffness(const double k)
+        : k(k)
+      {}
+
+      void
+      add_product(const std::vector<Vector<double>> &v,
+                  std::vector<Vector<double>>       &results) const override
+      {
+        for (unsigned int c = 0; c < v.size(); ++c)
+          results[c].add(k, v[c]);
+      }
+
+    private:
+      const double k;
+    };
+  } // namespace
+
+  std::unique_ptr<CellForceStiffness>
+  MembraneElasticity::stiffness(const std::vector<Vector<double>> &x) const
+  {
+    auto result = std::make_unique<ElasticityStiffness>(membranes.size());
+    for (unsigned int c = 0; c < membranes.size(); ++c)
+      membranes[c]->stiffness(x[c], result->cells[c]);
+    return result;
+  }
+
   Tether::Tether(const std::vector<std::unique_ptr<Membrane>> &membranes,
                  const double                                  stiffness)
     : membranes(membranes)
-    , stiffness(stiffness)
+    , spring_constant(stiffness)
   {}
 
   CellForceReport
@@ -39,12 +90,18 @@ namespace rbc_ifem
         for (unsigned int i = 0; i < x[c].size(); ++i)
           {
             const double displacement = x[c][i] - X[i];
-            const double spring       = -stiffness * displacement;
+            const double spring       = -spring_constant * displacement;
             forces[c][i] += spring;
             report.external_force[membranes[c]->component(i)] += spring;
-            report.energy += stiffness / 2. * displacement * displacement;
+            report.energy += spring_constant / 2. * displacement * displacement;
           }
       }
     return report;
+  }
+
+  std::unique_ptr<CellForceStiffness>
+  Tether::stiffness(const std::vector<Vector<double>> &) const
+  {
+    return std::make_unique<SpringStiffness>(spring_constant);
   }
 } // namespace rbc_ifem

@@ -6,10 +6,13 @@
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/mapping_fe_field.h>
 #include <deal.II/fe/mapping_q.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/numerics/data_out.h>
 
 #include <Sacado.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <variant>
@@ -68,6 +71,69 @@ namespace rbc_ifem
     std::vector<double>       mass;
   };
 
+  /// dE/d(sum) for every sum of Sums (the in-plane sum's is 1).
+  struct Membrane::Multipliers
+  {
+    double                    area = 0., volume = 0.;
+    std::vector<Tensor<1, 3>> laplacian, normal;
+    std::vector<double>       mass;
+  };
+
+  namespace
+  {
+    /**
+     * The bending energy of one node from its sums, κ/2 m |y/m - c0 ν|²
+     * with ν = w/|w| (Membrane): for any number type, so that its Hessian
+     * in (y, m, w) can be taken with Sacado.
+     */
+    template <typename Number>
+    Number
+    nodal_bending_energy(const Tensor<1, 3, Number> &y,
+                         const Number               &m,
+                         const Tensor<1, 3, Number> &w,
+                         const double                kappa,
+                         const double                c0)
+    {
+      using std::sqrt;
+      const Number               norm_w = sqrt(w * w);
+      const Tensor<1, 3, Number> u      = y / m - c0 * w / norm_w;
+      return kappa / 2. * m * (u * u);
+    }
+
+    /// The Hessian of nodal_bending_energy() in (y, m, w), 7 × 7.
+    FullMatrix<double>
+    nodal_bending_hessian(const Tensor<1, 3> &y,
+                          const double        m,
+                          const Tensor<1, 3> &w,
+                          const double        kappa,
+                          const double        c0)
+    {
+      using First  = Sacado::Fad::SFad<double, 7>;
+      using Second = Sacado::Fad::SFad<First, 7>;
+      const std::array<double, 7> values{
+        {y[0], y[1], y[2], m, w[0], w[1], w[2]}};
+      std::array<Second, 7> s;
+      for (unsigned int j = 0; j < 7; ++j)
+        s[j] = Second(7, j, First(7, j, values[j]));
+      const Tensor<1, 3, Second> Y({s[0], s[1], s[2]}), W({s[4], s[5], s[6]});
+      const Second       e = nodal_bending_energy(Y, s[3], W, kappa, c0);
+      FullMatrix<double> hessian(7, 7);
+      for (unsigned int j = 0; j < 7; ++j)
+        for (unsigned int l = 0; l < 7; ++l)
+          hessian(j, l) = e.dx(j).dx(l);
+      return hessian;
+    }
+  } // namespace
+
+  void
+  MembraneStiffness::vmult_add(Vector<double>       &dst,
+                               const Vector<double> &src) const
+  {
+    local.vmult_add(dst, src);
+    for (const auto &[c, gradient] : rank_one)
+      dst.add(c * (gradient * src), gradient);
+  }
+
   Membrane::Membrane(const Triangulation<2, 3> &reference_mesh,
                      const MembraneParameters  &parameters)
     : parameters(parameters)
@@ -118,6 +184,21 @@ namespace rbc_ifem
         cell_dofs.push_back(dofs);
         cell_nodes.push_back(nodes);
       }
+
+    // The stiffness couples the DoFs of all cells around a node: the
+    // bending energy of a node depends on them through its sums.
+    cells_around_node.resize(n_nodes);
+    for (unsigned int c = 0; c < cell_nodes.size(); ++c)
+      for (unsigned int a = 0; a < n_a; ++a)
+        cells_around_node[cell_nodes[c][a]].emplace_back(c, a);
+    DynamicSparsityPattern coupled(dof_handler.n_dofs());
+    for (unsigned int i = 0; i < n_nodes; ++i)
+      {
+        const std::vector<types::global_dof_index> patch = patch_dofs(i);
+        for (const types::global_dof_index row : patch)
+          coupled.add_entries(row, patch.begin(), patch.end(), true);
+      }
+    stiffness_sparsity.copy_from(coupled);
 
     // X: the support points of the field, on the curved reference surface.
     const MappingQ<2, 3> mapping(std::max(2u, parameters.degree));
@@ -292,36 +373,34 @@ namespace rbc_ifem
     return energy_and_forces(x, no_forces);
   }
 
-  MembraneEnergy
-  Membrane::energy_and_forces(const Vector<double> &x,
-                              Vector<double>       &forces) const
+  Membrane::Multipliers
+  Membrane::energy_derivatives(const Sums &sums, MembraneEnergy &energy) const
   {
-    const Sums   sums  = sum_cell_terms(x);
     const double kappa = parameters.bending_modulus,
                  c0    = parameters.spontaneous_curvature;
-    MembraneEnergy energy;
+    Multipliers d;
     energy.in_plane = sums.in_plane;
     // The penalties, and their derivatives by the sums A and V. A switched
     // off penalty is left out, so that open test patches (V0 = 0) work.
-    double d_area = 0., d_volume = 0.;
     if (parameters.area_penalty > 0.)
       {
         energy.area =
           parameters.area_penalty / 2. * std::pow(sums.area - area0, 2) / area0;
-        d_area = parameters.area_penalty * (sums.area - area0) / area0;
+        d.area = parameters.area_penalty * (sums.area - area0) / area0;
       }
     if (parameters.volume_penalty > 0.)
       {
         energy.volume = parameters.volume_penalty / 2. *
                         std::pow(sums.volume - volume0, 2) / volume0;
-        d_volume =
+        d.volume =
           parameters.volume_penalty * (sums.volume - volume0) / volume0;
       }
 
     // The bending energy κ/2 Σ m_i |u_i|², u_i = y_i/m_i - c0 ν_i, and its
     // derivatives by the nodal sums y_i, m_i and w_i = ∫ N_i n dA.
-    std::vector<Tensor<1, 3>> d_laplacian(n_nodes), d_normal(n_nodes);
-    std::vector<double>       d_mass(n_nodes);
+    d.laplacian.resize(n_nodes);
+    d.normal.resize(n_nodes);
+    d.mass.resize(n_nodes);
     for (unsigned int i = 0; i < n_nodes; ++i)
       {
         const double       m  = sums.mass[i];
@@ -329,10 +408,19 @@ namespace rbc_ifem
         const Tensor<1, 3> nu = sums.normal[i] / w;
         const Tensor<1, 3> u  = sums.laplacian[i] / m - c0 * nu;
         energy.bending += kappa / 2. * m * (u * u);
-        d_laplacian[i] = kappa * u;
-        d_mass[i] = kappa / 2. * (u * u) - kappa * (u * sums.laplacian[i]) / m;
-        d_normal[i] = -kappa * c0 * m / w * (u - (u * nu) * nu);
+        d.laplacian[i] = kappa * u;
+        d.mass[i] = kappa / 2. * (u * u) - kappa * (u * sums.laplacian[i]) / m;
+        d.normal[i] = -kappa * c0 * m / w * (u - (u * nu) * nu);
       }
+    return d;
+  }
+
+  MembraneEnergy
+  Membrane::energy_and_forces(const Vector<double> &x,
+                              Vector<double>       &forces) const
+  {
+    MembraneEnergy    energy;
+    const Multipliers d = energy_derivatives(sum_cell_terms(x), energy);
     if (forces.size() == 0)
       return energy;
 
@@ -351,14 +439,7 @@ namespace rbc_ifem
           for (unsigned int k = 0; k < values.size(); ++k)
             local[k] = ADNumber(values.size(), k, values[k]);
           const CellTerms<ADNumber> terms = cell_terms(law, c, local);
-          ADNumber                  phi =
-            terms.in_plane + d_area * terms.area + d_volume * terms.volume;
-          for (unsigned int a = 0; a < cell_nodes[c].size(); ++a)
-            {
-              const unsigned int i = cell_nodes[c][a];
-              phi += d_laplacian[i] * terms.laplacian[a] +
-                     d_mass[i] * terms.mass[a] + d_normal[i] * terms.normal[a];
-            }
+          const ADNumber            phi   = cell_potential(c, terms, d);
           for (unsigned int k = 0; k < values.size(); ++k)
             forces[cell_dofs[c][k]] -= phi.dx(k);
         }
@@ -374,6 +455,131 @@ namespace rbc_ifem
       },
       elastic_law);
     return energy;
+  }
+
+  template <typename Number>
+  Number
+  Membrane::cell_potential(const unsigned int       c,
+                           const CellTerms<Number> &terms,
+                           const Multipliers       &d) const
+  {
+    Number phi = terms.in_plane + d.area * terms.area + d.volume * terms.volume;
+    for (unsigned int a = 0; a < cell_nodes[c].size(); ++a)
+      {
+        const unsigned int i = cell_nodes[c][a];
+        phi += d.laplacian[i] * terms.laplacian[a] + d.mass[i] * terms.mass[a] +
+               d.normal[i] * terms.normal[a];
+      }
+    return phi;
+  }
+
+  std::vector<types::global_dof_index>
+  Membrane::patch_dofs(const unsigned int i) const
+  {
+    std::vector<types::global_dof_index> patch;
+    for (const auto &[c, a] : cells_around_node[i])
+      patch.insert(patch.end(), cell_dofs[c].begin(), cell_dofs[c].end());
+    std::sort(patch.begin(), patch.end());
+    patch.erase(std::unique(patch.begin(), patch.end()), patch.end());
+    return patch;
+  }
+
+  void
+  Membrane::stiffness(const Vector<double> &x, MembraneStiffness &K) const
+  {
+    const Sums        sums = sum_cell_terms(x);
+    MembraneEnergy    energy;
+    const Multipliers d = energy_derivatives(sums, energy);
+    K.local.reinit(stiffness_sparsity);
+    K.rank_one.clear();
+
+    // Per cell, second derivatives of its potential (nested forward mode),
+    // and the first derivatives of its terms: of A and V for the penalties'
+    // rank-one parts, of each node's sums (y, m, w: 7 rows per local node)
+    // for the bending chain below.
+    const unsigned int n_a = scalar_fe.n_dofs_per_cell(),
+                       n   = fe.n_dofs_per_cell();
+    Vector<double> area_gradient(dof_handler.n_dofs()),
+      volume_gradient(dof_handler.n_dofs());
+    std::vector<FullMatrix<double>> sum_derivatives(cell_dofs.size(),
+                                                    FullMatrix<double>(7 * n_a,
+                                                                       n));
+    const auto add_cell_hessians = [&](auto ad_number, const auto &law) {
+      using Second = decltype(ad_number);
+      using First  = typename Second::value_type;
+      FullMatrix<double> cell_matrix(n, n);
+      for (unsigned int c = 0; c < cell_dofs.size(); ++c)
+        {
+          const std::vector<double> values = local_positions(c, x);
+          std::vector<Second>       local(n);
+          for (unsigned int k = 0; k < n; ++k)
+            local[k] = Second(n, k, First(n, k, values[k]));
+          const CellTerms<Second> terms = cell_terms(law, c, local);
+          const Second            phi   = cell_potential(c, terms, d);
+          for (unsigned int k = 0; k < n; ++k)
+            {
+              for (unsigned int l = 0; l < n; ++l)
+                cell_matrix(k, l) = phi.dx(k).dx(l);
+              area_gradient[cell_dofs[c][k]] += terms.area.dx(k).val();
+              volume_gradient[cell_dofs[c][k]] += terms.volume.dx(k).val();
+              for (unsigned int a = 0; a < n_a; ++a)
+                {
+                  FullMatrix<double> &J = sum_derivatives[c];
+                  for (unsigned int e = 0; e < 3; ++e)
+                    {
+                      J(7 * a + e, k)     = terms.laplacian[a][e].dx(k).val();
+                      J(7 * a + 4 + e, k) = terms.normal[a][e].dx(k).val();
+                    }
+                  J(7 * a + 3, k) = terms.mass[a].dx(k).val();
+                }
+            }
+          K.local.add(cell_dofs[c], cell_matrix);
+        }
+    };
+    std::visit(
+      [&](const auto &law) {
+        using Sacado::Fad::DFad;
+        using Sacado::Fad::SFad;
+        if (parameters.degree == 1)
+          add_cell_hessians(SFad<SFad<double, 3 * 4>, 3 * 4>(), law);
+        else if (parameters.degree == 2)
+          add_cell_hessians(SFad<SFad<double, 3 * 9>, 3 * 9>(), law);
+        else
+          add_cell_hessians(DFad<DFad<double>>(), law);
+      },
+      elastic_law);
+
+    // The bending energy's curvature in each node's sums s_i = (y, m, w):
+    // J_iᵀ B_i J_i, with J_i = ∂s_i/∂x over the cells around the node.
+    for (unsigned int i = 0; i < n_nodes; ++i)
+      {
+        const std::vector<types::global_dof_index> patch = patch_dofs(i);
+        FullMatrix<double> J(7, patch.size()), BJ(7, patch.size()),
+          patch_matrix(patch.size(), patch.size());
+        for (const auto &[c, a] : cells_around_node[i])
+          for (unsigned int k = 0; k < n; ++k)
+            {
+              const unsigned int column =
+                std::lower_bound(patch.begin(), patch.end(), cell_dofs[c][k]) -
+                patch.begin();
+              for (unsigned int r = 0; r < 7; ++r)
+                J(r, column) += sum_derivatives[c](7 * a + r, k);
+            }
+        nodal_bending_hessian(sums.laplacian[i],
+                              sums.mass[i],
+                              sums.normal[i],
+                              parameters.bending_modulus,
+                              parameters.spontaneous_curvature)
+          .mmult(BJ, J);
+        J.Tmmult(patch_matrix, BJ);
+        K.local.add(patch, patch_matrix);
+      }
+
+    if (parameters.area_penalty > 0.)
+      K.rank_one.emplace_back(parameters.area_penalty / area0, area_gradient);
+    if (parameters.volume_penalty > 0.)
+      K.rank_one.emplace_back(parameters.volume_penalty / volume0,
+                              volume_gradient);
   }
 
   std::vector<double>

@@ -4,6 +4,7 @@
 #include <deal.II/base/tensor.h>
 #include <deal.II/lac/vector.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,24 @@ namespace rbc_ifem
      * two cells pushing each other) sums to zero, and reports zero.
      */
     Tensor<1, 3> external_force;
+  };
+
+  /**
+   * The tangent stiffness K = ∂²E/∂x² of one CellForce at the positions it
+   * was taken at (CellForce::stiffness()): the forces at x + δx are
+   * F(x) - K δx to first order. The semi-implicit coupling applies it to
+   * displacements of all cells.
+   */
+  class CellForceStiffness
+  {
+  public:
+    virtual ~CellForceStiffness() = default;
+
+    /// Add K @p displacements to @p results (one Vector per cell, in the
+    /// layout of the positions).
+    virtual void
+    add_product(const std::vector<Vector<double>> &displacements,
+                std::vector<Vector<double>>       &results) const = 0;
   };
 
   /**
@@ -43,6 +62,14 @@ namespace rbc_ifem
     virtual CellForceReport
     add_forces(const std::vector<Vector<double>> &positions,
                std::vector<Vector<double>>       &forces) const = 0;
+
+    /**
+     * The exact K = ∂²E/∂x² at @p positions; nullptr for a force that does
+     * not change with the positions (K = 0). Tests check K δx against the
+     * central difference of the forces (tests/unit/coupling/).
+     */
+    virtual std::unique_ptr<CellForceStiffness>
+    stiffness(const std::vector<Vector<double>> &positions) const = 0;
   };
 } // namespace rbc_ifem
 

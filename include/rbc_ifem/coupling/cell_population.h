@@ -86,6 +86,21 @@ namespace rbc_ifem
     compute_forces();
 
     /**
+     * Take the tangent stiffness K = ∂²E/∂x² of every CellForce at the
+     * current positions, for stiffness_product() until the next call.
+     */
+    void
+    linearize();
+
+    /**
+     * K δ at the positions of the last linearize(), with δ and K δ point by
+     * point in the order of points() [pN]: the forces at x + δ are F - K δ
+     * to first order.
+     */
+    std::vector<Tensor<1, 3>>
+    stiffness_product(const std::vector<Tensor<1, 3>> &displacements) const;
+
+    /**
      * The net external force on the cells at the last compute_forces()
      * [pN]: what holds them (CellForceReport::external_force, summed).
      */
@@ -155,8 +170,10 @@ namespace rbc_ifem
     std::vector<Vector<double>>             forces;
     unsigned int                            n_membrane_points = 0;
     std::vector<std::unique_ptr<CellForce>> cell_forces;
-    Tensor<1, 3>                            external_force;
-    double                                  total_energy = 0.;
+    /// The stiffness of each of cell_forces at the last linearize().
+    std::vector<std::unique_ptr<CellForceStiffness>> stiffnesses;
+    Tensor<1, 3>                                     external_force;
+    double                                           total_energy = 0.;
   };
 } // namespace rbc_ifem
 

@@ -35,6 +35,9 @@ namespace rbc_ifem
     /// p(h) and dp/dh for 0 < h < cutoff().
     virtual std::pair<double, double>
     pressure(const double h) const = 0;
+    /// d²p/dh² for 0 < h < cutoff(): what the forces' derivative needs.
+    virtual double
+    pressure_curvature(const double h) const = 0;
   };
 
   /**
@@ -52,6 +55,8 @@ namespace rbc_ifem
     energy(const double h) const override;
     std::pair<double, double>
     pressure(const double h) const override;
+    double
+    pressure_curvature(const double h) const override;
 
   private:
     const double p0;    ///< [pN/µm²]
@@ -76,6 +81,8 @@ namespace rbc_ifem
     energy(const double h) const override;
     std::pair<double, double>
     pressure(const double h) const override;
+    double
+    pressure_curvature(const double h) const override;
 
   private:
     const double depth;    ///< D_e [pN/µm]
@@ -111,12 +118,27 @@ namespace rbc_ifem
     add_forces(const std::vector<Vector<double>> &positions,
                std::vector<Vector<double>>       &forces) const override;
 
+    std::unique_ptr<CellForceStiffness>
+    stiffness(const std::vector<Vector<double>> &positions) const override;
+
   private:
     /// ψ(r) and ψ'(r), shifted to vanish at the cutoff.
     std::pair<double, double>
     pair_density(const double r) const;
     std::pair<double, double>
     unshifted_pair_density(const double r) const;
+    /// ψ''(r), the same shifted or not.
+    double
+    pair_density_curvature(const double r) const;
+    /**
+     * Call @p f(ci, ni, cj, nj, separation) for every pair of points of
+     * different cells closer than the cutoff at @p x: cell and node of
+     * each, and x_i - x_j (the shortest across periodic ends).
+     */
+    template <typename PairFunction>
+    void
+    for_each_close_pair(const std::vector<Vector<double>> &x,
+                        const PairFunction                &f) const;
 
     const std::vector<std::unique_ptr<Membrane>> &membranes;
     const std::unique_ptr<GapPotential>           potential;
@@ -142,6 +164,9 @@ namespace rbc_ifem
     CellForceReport
     add_forces(const std::vector<Vector<double>> &positions,
                std::vector<Vector<double>>       &forces) const override;
+
+    std::unique_ptr<CellForceStiffness>
+    stiffness(const std::vector<Vector<double>> &positions) const override;
 
     /**
      * Bring every cell wider than the lumen into it: a wall that starts
@@ -182,6 +207,9 @@ namespace rbc_ifem
     CellForceReport
     add_forces(const std::vector<Vector<double>> &positions,
                std::vector<Vector<double>>       &forces) const override;
+
+    std::unique_ptr<CellForceStiffness>
+    stiffness(const std::vector<Vector<double>> &positions) const override;
 
   private:
     const std::vector<std::unique_ptr<Membrane>> &membranes;

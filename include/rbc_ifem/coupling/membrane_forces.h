@@ -25,6 +25,9 @@ namespace rbc_ifem
     add_forces(const std::vector<Vector<double>> &positions,
                std::vector<Vector<double>>       &forces) const override;
 
+    std::unique_ptr<CellForceStiffness>
+    stiffness(const std::vector<Vector<double>> &positions) const override;
+
   private:
     const std::vector<std::unique_ptr<Membrane>> &membranes;
     /// One cell's forces, before they are added.
@@ -47,9 +50,12 @@ namespace rbc_ifem
     add_forces(const std::vector<Vector<double>> &positions,
                std::vector<Vector<double>>       &forces) const override;
 
+    std::unique_ptr<CellForceStiffness>
+    stiffness(const std::vector<Vector<double>> &positions) const override;
+
   private:
     const std::vector<std::unique_ptr<Membrane>> &membranes;
-    const double                                  stiffness; ///< k [pN/µm]
+    const double spring_constant; ///< k [pN/µm]
   };
 } // namespace rbc_ifem
 

@@ -12,6 +12,8 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/grid/tria.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 
 #include <array>
@@ -39,6 +41,26 @@ namespace rbc_ifem
   };
 
   /**
+   * The tangent stiffness K = ∂²E/∂x² of a Membrane at positions x, exact
+   * for its discrete energy, so that the forces at x + δx are F - K δx to
+   * first order (Membrane::stiffness()). Two parts: a sparse matrix on the
+   * membrane's DoFs (the cell integrals, and the bending energy's nodal
+   * sums, which couple the DoFs of all cells around a node), and the
+   * rank-one terms c ∇S ∇Sᵀ of the area and volume penalties (S = A or V,
+   * c = k/S0), which couple every DoF with every other and are kept as
+   * vectors.
+   */
+  struct MembraneStiffness
+  {
+    SparseMatrix<double>                           local;
+    std::vector<std::pair<double, Vector<double>>> rank_one;
+
+    /// @p dst += K @p src
+    void
+    vmult_add(Vector<double> &dst, const Vector<double> &src) const;
+  };
+
+  /**
    * One red cell membrane: its position field x in
    * FESystem<2,3>(FE_Q<2,3>(k), 3) on the reference mesh (the Evans-Fung
    * Triangulation<2,3>), and its energy
@@ -60,6 +82,8 @@ namespace rbc_ifem
    * every term is a function of cell integrals and of nodal and global sums
    * of them, so the chain rule reduces the gradient to one derivative per
    * cell, taken with Sacado's forward-mode automatic differentiation.
+   * stiffness() returns ∂²E/∂x², exact too: nested forward mode per cell,
+   * and the chain rule through the nodal and global sums.
    */
   class Membrane
   {
@@ -89,6 +113,14 @@ namespace rbc_ifem
     /// E(x), and F = -∂E/∂x in @p forces [pN], one entry per DoF.
     MembraneEnergy
     energy_and_forces(const Vector<double> &x, Vector<double> &forces) const;
+
+    /**
+     * The tangent stiffness K = ∂²E/∂x² at @p x into @p stiffness, its
+     * sparse part on this membrane's sparsity (the DoFs of the cells around
+     * each node coupled).
+     */
+    void
+    stiffness(const Vector<double> &x, MembraneStiffness &stiffness) const;
 
     /// The lumped area m_i = ∫ N_i dA of every node (nodes()) on the surface x.
     std::vector<double>
@@ -141,6 +173,30 @@ namespace rbc_ifem
     template <typename Number>
     struct CellTerms;
     struct Sums;
+    struct Multipliers;
+
+    /**
+     * E from the sums, into @p energy, and the derivatives of E by every
+     * sum: what turns the derivatives of the cell terms into E's.
+     */
+    Multipliers
+    energy_derivatives(const Sums &sums, MembraneEnergy &energy) const;
+
+    /**
+     * The cell's share of E with the sums' derivatives @p d held fixed,
+     * φ_c = W_c + d_A A_c + d_V V_c + Σ_a (d_y·y_a + d_m m_a + d_w·w_a):
+     * its gradient in the cell's DoFs is E's, and its Hessian E's but for
+     * the curvature of E in the sums themselves.
+     */
+    template <typename Number>
+    Number
+    cell_potential(const unsigned int       cell,
+                   const CellTerms<Number> &terms,
+                   const Multipliers       &d) const;
+
+    /// The DoFs of the cells around node @p i, sorted.
+    std::vector<types::global_dof_index>
+    patch_dofs(const unsigned int i) const;
 
     /// The integrals of one cell at the local positions @p x, with @p law.
     template <typename Number, typename Law>
@@ -177,6 +233,11 @@ namespace rbc_ifem
     unsigned int                                        n_nodes = 0;
     std::vector<unsigned int>                           component_of_dof;
     std::vector<std::array<types::global_dof_index, 3>> node_dofs;
+    /// Per node, the (cell, local node) pairs of the cells around it.
+    std::vector<std::vector<std::pair<unsigned int, unsigned int>>>
+      cells_around_node;
+    /// The DoFs coupled by the stiffness: those of the cells around a node.
+    SparsityPattern stiffness_sparsity;
 
     /// Reference geometry per cell and quadrature point: G⁻¹ and sqrt(det G).
     std::vector<std::vector<Tensor<2, 2>>> reference_metric_inverse;

@@ -92,6 +92,7 @@ main(int argc, char *argv[])
                0.,
                0.);
     check_gradient(check, cells, "elasticity");
+    check_stiffness(check, cells, "elasticity");
   }
 
   // With the cells held by springs of k = 50 pN/µm.
@@ -121,6 +122,7 @@ main(int argc, char *argv[])
                0.,
                1e-9 * springs.norm());
     check_gradient(check, cells, "elasticity and tether");
+    check_stiffness(check, cells, "elasticity and tether");
   }
   return check.exit_code();
 }

@@ -196,6 +196,7 @@ main(int argc, char *argv[])
                   (total(forces) - held).norm() / largest,
                   1e-12);
     check_gradient(check, *cells, "elasticity, repulsion, wall");
+    check_stiffness(check, *cells, "elasticity, repulsion, wall");
   }
 
   // Repulsion and aggregation, no wall: force and torque conserved.
@@ -223,6 +224,7 @@ main(int argc, char *argv[])
                       axial,
                       -0.1);
       check_gradient(check, *cells, "elasticity, repulsion, aggregation");
+      check_stiffness(check, *cells, "elasticity, repulsion, aggregation");
     }
 
   // Across the ends of a periodic segment of 20 µm: cell 0 moved by a

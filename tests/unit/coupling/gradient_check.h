@@ -5,6 +5,7 @@
 
 #include "check.h"
 
+#include <cmath>
 #include <iostream>
 #include <random>
 #include <string>
@@ -60,6 +61,59 @@ check_gradient(Checker                  &check,
              directional / difference,
              1.,
              1e-6);
+}
+
+/**
+ * Check the tangent stiffness of @p cells (CellPopulation::linearize()):
+ * along a random direction v, K v equals the central difference of the
+ * forces, (F(x - hv) - F(x + hv))/(2h), to a relative 1e-6. The cells are
+ * left at their positions, with their forces computed there.
+ */
+inline void
+check_stiffness(Checker                  &check,
+                rbc_ifem::CellPopulation &cells,
+                const std::string        &what)
+{
+  using namespace dealii;
+  std::mt19937                           random(13);
+  std::uniform_real_distribution<double> uniform(-1., 1.);
+  const std::vector<Vector<double>>      x = cells.positions();
+  std::vector<Tensor<1, 3>>              v(cells.n_points());
+  for (Tensor<1, 3> &point : v)
+    for (unsigned int d = 0; d < 3; ++d)
+      point[d] = uniform(random);
+
+  cells.linearize();
+  const std::vector<Tensor<1, 3>> Kv = cells.stiffness_product(v);
+
+  const double h         = 1e-6;
+  const auto   forces_at = [&](const double s) {
+    std::vector<Vector<double>> moved = x;
+    unsigned int                point = 0;
+    for (unsigned int c = 0; c < x.size(); ++c)
+      for (const auto &dofs : cells.membranes()[c]->nodes())
+        {
+          for (unsigned int d = 0; d < 3; ++d)
+            moved[c][dofs[d]] += s * v[point][d];
+          ++point;
+        }
+    cells.set_positions(moved);
+    return cells.compute_forces();
+  };
+  const std::vector<Tensor<1, 3>> plus = forces_at(h), minus = forces_at(-h);
+  cells.set_positions(x);
+  cells.compute_forces();
+  double norm = 0., error = 0.;
+  for (unsigned int i = 0; i < Kv.size(); ++i)
+    {
+      norm += Kv[i].norm_square();
+      error += (Kv[i] - (minus[i] - plus[i]) / (2. * h)).norm_square();
+    }
+  std::cout << "  " << what << ": |K v| " << std::sqrt(norm)
+            << ", |K v - difference| " << std::sqrt(error) << '\n';
+  check.at_most(what + ": |K v - (F(x-hv) - F(x+hv))/2h| / |K v|",
+                std::sqrt(error / norm),
+                1e-6);
 }
 
 #endif

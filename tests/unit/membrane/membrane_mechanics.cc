@@ -1,6 +1,9 @@
 // The membrane's energy and forces (Membrane), for both elastic laws and
 // both element degrees where it matters:
 //
+// - the tangent stiffness K = ∂²E/∂x² of every term against the central
+//   difference of the forces;
+//
 // - the forces are the exact negative gradient: each energy term against a
 //   central finite difference along random directions at a randomly
 //   perturbed shape;
@@ -129,6 +132,62 @@ namespace
         check.at_most(law + ", Q" + std::to_string(degree) + ", " + name +
                         ": |dE/dx·v (finite difference) + F·v| / |F·v|",
                       worst,
+                      1e-6);
+      }
+  }
+
+  /**
+   * The tangent stiffness of each term (and of all together, with a
+   * spontaneous curvature): K v against the central difference of the
+   * forces, (F(x - hv) - F(x + hv))/(2h), at a perturbed shape.
+   */
+  void
+  check_stiffness(Checker           &check,
+                  const std::string &law,
+                  const unsigned int degree)
+  {
+    Triangulation<2, 3> surface;
+    create_cell(surface, 2);
+    std::mt19937                                                   random(11);
+    const std::vector<std::pair<std::string, std::array<bool, 3>>> terms{
+      {"in-plane", {{false, false, false}}},
+      {"bending", {{true, false, false}}},
+      {"area", {{false, true, false}}},
+      {"volume", {{false, false, true}}},
+      {"all, c0 = 0.3/µm", {{true, true, true}}}};
+    for (const auto &[name, on] : terms)
+      {
+        MembraneParameters p = with_terms(law, on[0], on[1], on[2]);
+        p.degree             = degree;
+        if (name.find("c0") != std::string::npos)
+          p.spontaneous_curvature = 0.3;
+        const Membrane       membrane(surface, p);
+        const Vector<double> x =
+          Vector<double>(membrane.reference_positions()) +=
+          random_vector(membrane.reference_positions().size(), 0.2, random);
+        MembraneStiffness K;
+        membrane.stiffness(x, K);
+        const Vector<double> v = random_vector(x.size(), 1., random);
+        Vector<double>       Kv(x.size());
+        K.vmult_add(Kv, v);
+
+        const double   h = 1e-6;
+        Vector<double> plus(x), minus(x), f_plus(x.size()), f_minus(x.size());
+        plus.add(h, v);
+        minus.add(-h, v);
+        membrane.energy_and_forces(plus, f_plus);
+        membrane.energy_and_forces(minus, f_minus);
+        Vector<double> difference(f_minus);
+        difference -= f_plus;
+        difference /= 2. * h;
+        const double norm = Kv.l2_norm();
+        difference -= Kv;
+        std::cout << "  " << law << ", Q" << degree << ", " << name
+                  << ": |K v| " << norm << ", |K v - difference| "
+                  << difference.l2_norm() << '\n';
+        check.at_most(law + ", Q" + std::to_string(degree) + ", " + name +
+                        ": |K v - (F(x-hv) - F(x+hv))/2h| / |K v|",
+                      difference.l2_norm() / norm,
                       1e-6);
       }
   }
@@ -415,7 +474,10 @@ main()
   Checker check;
   for (const std::string law : {"neo-Hookean", "Skalak"})
     for (const unsigned int degree : {1u, 2u})
-      check_gradient(check, law, degree);
+      {
+        check_gradient(check, law, degree);
+        check_stiffness(check, law, degree);
+      }
   for (const std::string law : {"neo-Hookean", "Skalak"})
     check_rigid_motions(check, law);
   for (const unsigned int degree : {1u, 2u})

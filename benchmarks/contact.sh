@@ -27,10 +27,13 @@ subsection Layout
   set Minimum gap     = 0.2
 end
 subsection Time
+  set Time step       = 1.5e-5
   set Number of steps = 20
   set Output interval = 20
 end
 subsection Immersed cells
+  set Coupling            = explicit
+  set Progress interval   = 20
   set Diffusion interval  = 0
   set Checkpoint interval = 0
 end

@@ -29,6 +29,8 @@ subsection Time
   set Output interval = 100
 end
 subsection Immersed cells
+  set Coupling            = explicit
+  set Progress interval   = 20
   set Diffusion interval  = 100
   set Checkpoint interval = 0
 end

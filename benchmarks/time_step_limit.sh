@@ -30,6 +30,7 @@ subsection Time
   set Output interval = 300
 end
 subsection Immersed cells
+  set Coupling            = explicit
   set Diffusion interval  = 0
   set Checkpoint interval = 0
   set Progress interval   = 100

@@ -69,13 +69,7 @@ namespace rbc_ifem
         total_energy += report.energy;
       }
 
-    std::vector<Tensor<1, 3>> result;
-    result.reserve(n_membrane_points);
-    for (unsigned int c = 0; c < size(); ++c)
-      for (const auto &dofs : cell_membranes[c]->nodes())
-        result.push_back(Tensor<1, 3>(
-          {forces[c][dofs[0]], forces[c][dofs[1]], forces[c][dofs[2]]}));
-    return result;
+    return per_point(forces);
   }
 
   void
@@ -87,34 +81,48 @@ namespace rbc_ifem
         stiffnesses.push_back(std::move(K));
   }
 
-  std::vector<Tensor<1, 3>>
-  CellPopulation::stiffness_product(
-    const std::vector<Tensor<1, 3>> &displacements) const
+  std::vector<Vector<double>>
+  CellPopulation::per_cell(const std::vector<Tensor<1, 3>> &values) const
   {
-    AssertDimension(displacements.size(), n_membrane_points);
-    std::vector<Vector<double>> v, Kv;
-    auto                        point = displacements.begin();
+    AssertDimension(values.size(), n_membrane_points);
+    std::vector<Vector<double>> result;
+    auto                        point = values.begin();
     for (unsigned int c = 0; c < size(); ++c)
       {
-        v.emplace_back(x[c].size());
-        Kv.emplace_back(x[c].size());
+        result.emplace_back(x[c].size());
         for (const auto &dofs : cell_membranes[c]->nodes())
           {
             for (unsigned int d = 0; d < 3; ++d)
-              v[c][dofs[d]] = (*point)[d];
+              result[c][dofs[d]] = (*point)[d];
             ++point;
           }
       }
-    for (const auto &K : stiffnesses)
-      K->add_product(v, Kv);
+    return result;
+  }
 
+  std::vector<Tensor<1, 3>>
+  CellPopulation::per_point(const std::vector<Vector<double>> &values) const
+  {
     std::vector<Tensor<1, 3>> result;
     result.reserve(n_membrane_points);
     for (unsigned int c = 0; c < size(); ++c)
       for (const auto &dofs : cell_membranes[c]->nodes())
-        result.push_back(
-          Tensor<1, 3>({Kv[c][dofs[0]], Kv[c][dofs[1]], Kv[c][dofs[2]]}));
+        result.push_back(Tensor<1, 3>(
+          {values[c][dofs[0]], values[c][dofs[1]], values[c][dofs[2]]}));
     return result;
+  }
+
+  std::vector<Tensor<1, 3>>
+  CellPopulation::stiffness_product(
+    const std::vector<Tensor<1, 3>> &displacements) const
+  {
+    const std::vector<Vector<double>> v = per_cell(displacements);
+    std::vector<Vector<double>>       Kv(v.size());
+    for (unsigned int c = 0; c < size(); ++c)
+      Kv[c].reinit(v[c].size());
+    for (const auto &K : stiffnesses)
+      K->add_product(v, Kv);
+    return per_point(Kv);
   }
 
   Tensor<1, 3>
@@ -180,6 +188,8 @@ namespace rbc_ifem
           shear_plane_ellipse(measures.second_moment);
         shape.taylor_deformation = ellipse.taylor_deformation;
         shape.inclination        = ellipse.inclination;
+        shape.largest_local_area_change =
+          cell_membranes[c]->local_area_changes(x[c]).linfty_norm();
       }
     return result;
   }

@@ -50,6 +50,17 @@ namespace rbc_ifem
           particles.insert_particle(point, reference, i, cell);
       }
     n_membrane_points = points.size();
+
+    const FiniteElement<3> &fe = dof_handler.get_fe();
+    shape_values.clear();
+    shape_values.reserve(particles.n_locally_owned_particles() *
+                         velocity_shape_functions.size());
+    for_each_particle_cell([&](const auto &, const auto &in_cell) {
+      for (const auto &p : in_cell)
+        for (const auto &[k, c] : velocity_shape_functions)
+          shape_values.push_back(
+            fe.shape_value_component(k, p.get_reference_location(), c));
+    });
   }
 
   template <typename CellFunction>
@@ -78,15 +89,13 @@ namespace rbc_ifem
                            TrilinosWrappers::MPI::BlockVector &load) const
   {
     AssertDimension(forces.size(), n_membrane_points);
-    const FiniteElement<3> &fe = dof_handler.get_fe();
-    Vector<double>          cell_load(fe.n_dofs_per_cell());
+    Vector<double> cell_load(dof_handler.get_fe().n_dofs_per_cell());
+    auto           phi = shape_values.begin();
     for_each_particle_cell([&](const auto &dofs, const auto &in_cell) {
       cell_load = 0.;
       for (const auto &p : in_cell)
         for (const auto &[k, c] : velocity_shape_functions)
-          cell_load[k] +=
-            forces[p.get_id()][c] *
-            fe.shape_value_component(k, p.get_reference_location(), c);
+          cell_load[k] += forces[p.get_id()][c] * *phi++;
       constraints.distribute_local_to_global(cell_load, dofs, load);
     });
     load.compress(VectorOperation::add);
@@ -97,14 +106,15 @@ namespace rbc_ifem
     const TrilinosWrappers::MPI::BlockVector &solution) const
   {
     // Each point is on one rank; the others add zero.
-    const FiniteElement<3> &fe = dof_handler.get_fe();
-    std::vector<double>     velocity(3 * n_membrane_points, 0.);
+    std::vector<double> velocity(3 * n_membrane_points, 0.);
+    std::vector<double> cell_values(dof_handler.get_fe().n_dofs_per_cell());
+    auto                phi = shape_values.begin();
     for_each_particle_cell([&](const auto &dofs, const auto &in_cell) {
+      for (const auto &[k, c] : velocity_shape_functions)
+        cell_values[k] = solution(dofs[k]);
       for (const auto &p : in_cell)
         for (const auto &[k, c] : velocity_shape_functions)
-          velocity[3 * p.get_id() + c] +=
-            solution(dofs[k]) *
-            fe.shape_value_component(k, p.get_reference_location(), c);
+          velocity[3 * p.get_id() + c] += cell_values[k] * *phi++;
     });
     Utilities::MPI::sum(velocity, triangulation.get_communicator(), velocity);
     std::vector<Tensor<1, 3>> result(n_membrane_points);

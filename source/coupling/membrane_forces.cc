@@ -2,6 +2,7 @@
 
 namespace rbc_ifem
 {
+
   MembraneElasticity::MembraneElasticity(
     const std::vector<std::unique_ptr<Membrane>> &membranes)
     : membranes(membranes)

@@ -282,6 +282,8 @@ namespace rbc_ifem
     residual.reinit(owned, communicator);
     update.reinit(owned, communicator);
     body_force.reinit(owned, communicator);
+    load_owned.reinit(owned, communicator);
+    load_ghosted.reinit(owned, relevant, communicator);
     drive_load.reinit(owned, communicator);
     unit_axial_velocity.reinit(owned, communicator);
     VectorTools::interpolate(mapping,
@@ -445,8 +447,53 @@ namespace rbc_ifem
     residual.compress(VectorOperation::add);
     residual -= body_force;
     residual -= drive_load;
+    if (velocity_load)
+      velocity_load(current, residual);
     return residual.l2_norm();
   }
+
+  void
+  FluidProblem::set_velocity_load(const VelocityLoad &load)
+  {
+    velocity_load = load;
+  }
+
+  void
+  FluidProblem::add_field_load(const TrilinosWrappers::MPI::BlockVector &v,
+                               TrilinosWrappers::MPI::BlockVector &result) const
+  {
+    load_owned = v;
+    homogeneous_constraints.distribute(load_owned);
+    load_ghosted = load_owned;
+    velocity_load(load_ghosted, result);
+  }
+
+  namespace
+  {
+    /// J + L of FluidProblem: the stored matrix and the velocity load.
+    template <typename Problem>
+    class OperatorWithLoad
+    {
+    public:
+      OperatorWithLoad(const TrilinosWrappers::BlockSparseMatrix &matrix,
+                       const Problem                             &problem)
+        : matrix(matrix)
+        , problem(problem)
+      {}
+
+      void
+      vmult(TrilinosWrappers::MPI::BlockVector       &dst,
+            const TrilinosWrappers::MPI::BlockVector &src) const
+      {
+        matrix.vmult(dst, src);
+        problem(src, dst);
+      }
+
+    private:
+      const TrilinosWrappers::BlockSparseMatrix &matrix;
+      const Problem                             &problem;
+    };
+  } // namespace
 
   void
   FluidProblem::assemble_drive_load()
@@ -501,7 +548,18 @@ namespace rbc_ifem
     residual *= -1.;
     try
       {
-        solver.solve(system_matrix, update, residual, preconditioner);
+        if (velocity_load)
+          {
+            const auto load = [this](const auto &v, auto &result) {
+              add_field_load(v, result);
+            };
+            solver.solve(OperatorWithLoad<decltype(load)>(system_matrix, load),
+                         update,
+                         residual,
+                         preconditioner);
+          }
+        else
+          solver.solve(system_matrix, update, residual, preconditioner);
       }
     catch (const SolverControl::NoConvergence &e)
       {
@@ -537,6 +595,16 @@ namespace rbc_ifem
         }
       TrilinosWrappers::MPI::BlockVector guess(owned, communicator);
       guess = previous;
+      if (velocity_load)
+        {
+          // The implicit force makes the flow change smoothly from step to
+          // step: extrapolate it.
+          if (earlier.size() > 0)
+            guess.sadd(2., -1., earlier);
+          else
+            earlier.reinit(owned, communicator);
+          earlier = previous;
+        }
       boundary_constraints.distribute(guess);
       current = guess;
     }
@@ -616,6 +684,8 @@ namespace rbc_ifem
         seen_from_new_frame.add(frame_velocity - velocity, unit_axial_velocity);
         current = seen_from_new_frame;
       }
+    if (earlier.size() > 0)
+      earlier.add(frame_velocity - velocity, unit_axial_velocity);
     frame_velocity = velocity;
   }
 
@@ -625,38 +695,59 @@ namespace rbc_ifem
     return frame_velocity;
   }
 
+  std::vector<double>
+  FluidProblem::gather(const TrilinosWrappers::MPI::BlockVector &v) const
+  {
+    std::vector<double>     values(dof_handler.n_dofs(), 0.);
+    types::global_dof_index offset = 0;
+    for (unsigned int b = 0; b < 2; ++b)
+      {
+        for (const auto i : owned[b])
+          values[offset + i] = v.block(b)(i);
+        offset += owned[b].size();
+      }
+    Utilities::MPI::sum(values, communicator, values);
+    return values;
+  }
+
+  void
+  FluidProblem::scatter(const std::vector<double>          &values,
+                        TrilinosWrappers::MPI::BlockVector &v) const
+  {
+    AssertDimension(values.size(), dof_handler.n_dofs());
+    TrilinosWrappers::MPI::BlockVector owned_values(owned, communicator);
+    types::global_dof_index            offset = 0;
+    for (unsigned int b = 0; b < 2; ++b)
+      {
+        for (const auto i : owned[b])
+          owned_values.block(b)(i) = values[offset + i];
+        offset += owned[b].size();
+      }
+    owned_values.compress(VectorOperation::insert);
+    v = owned_values;
+  }
+
   FluidState
   FluidProblem::state() const
   {
     FluidState state;
     state.frame_velocity = frame_velocity;
     state.residual_scale = residual_scale;
-    state.solution.assign(dof_handler.n_dofs(), 0.);
-    types::global_dof_index offset = 0;
-    for (unsigned int b = 0; b < 2; ++b)
-      {
-        for (const auto i : owned[b])
-          state.solution[offset + i] = current.block(b)(i);
-        offset += owned[b].size();
-      }
-    Utilities::MPI::sum(state.solution, communicator, state.solution);
+    state.solution       = gather(current);
+    if (earlier.size() > 0)
+      state.earlier_solution = gather(earlier);
     return state;
   }
 
   void
   FluidProblem::set_state(const FluidState &state)
   {
-    AssertDimension(state.solution.size(), dof_handler.n_dofs());
-    TrilinosWrappers::MPI::BlockVector values(owned, communicator);
-    types::global_dof_index            offset = 0;
-    for (unsigned int b = 0; b < 2; ++b)
+    scatter(state.solution, current);
+    if (!state.earlier_solution.empty())
       {
-        for (const auto i : owned[b])
-          values.block(b)(i) = state.solution[offset + i];
-        offset += owned[b].size();
+        earlier.reinit(owned, communicator);
+        scatter(state.earlier_solution, earlier);
       }
-    values.compress(VectorOperation::insert);
-    current        = values;
     frame_velocity = state.frame_velocity;
     residual_scale = state.residual_scale;
   }

@@ -5,6 +5,7 @@
 #include <rbc_ifem/base/solver_failure.h>
 #include <rbc_ifem/coupling/contact_forces.h>
 #include <rbc_ifem/coupling/membrane_forces.h>
+#include <rbc_ifem/coupling/semi_implicit_load.h>
 #include <rbc_ifem/coupling/time_step_limit.h>
 #include <rbc_ifem/diffusion/co_diffusion.h>
 #include <rbc_ifem/diffusion/uptake.h>
@@ -55,7 +56,7 @@ namespace rbc_ifem
      * and CRC-32, so that a truncated or damaged file is refused.
      */
     const std::string  checkpoint_title          = "rbc-ifem checkpoint";
-    constexpr unsigned checkpoint_current_format = 20261203;
+    constexpr unsigned checkpoint_current_format = 20261204;
 
     std::uint32_t
     crc32(const std::string &bytes)
@@ -258,8 +259,11 @@ namespace rbc_ifem
                                        parameters.membrane,
                                        cells.point_spacing(),
                                        mesh_size);
-    time_step = parameters.time.coupled_time_step(stable.limit);
+    time_step = parameters.time.coupled_time_step(stable.limit,
+                                                  parameters.immersed.coupling);
     fluid.set_time_step(time_step);
+    if (parameters.immersed.coupling == CouplingScheme::semi_implicit)
+      setup_semi_implicit_load();
 
     pcout << "  fluid mesh: " << triangulation.n_active_cells() << " cells, "
           << fluid.get_dof_handler().n_dofs() << " DoFs" << std::endl;
@@ -296,19 +300,25 @@ namespace rbc_ifem
           << "  explicit-coupling time step limit ≈ " << stable_step
           << " s (in-plane " << stable.in_plane << " s, bending "
           << stable.bending
-          << " s); runs stay stable below about 0.7 of it (doc/ifem.md); Δt = "
-          << time_step << " s ("
+          << " s); explicit runs stay stable below about 0.7 of it "
+             "(doc/ifem.md); coupling "
+          << name_of(parameters.immersed.coupling, coupling_scheme_names())
+          << ", Δt = " << time_step << " s ("
           << (parameters.time.automatic_time_step() ? "Time step = auto, " : "")
           << time_step / stable_step << " of the estimate)" << std::endl;
     // Measured (doc/ifem.md): 0.71 of the estimate stable over the default
     // run, 0.83 diverged after 112 steps.
-    if (time_step > 0.75 * stable_step)
+    if (parameters.immersed.coupling == CouplingScheme::explicit_forces &&
+        time_step > 0.75 * stable_step)
       pcout << "  WARNING: Time/Time step = " << time_step << " s is "
             << time_step / stable_step << " of the explicit-coupling estimate "
             << stable_step
             << " s; runs stay stable below about 0.7 of it: set it to at "
                "most "
-            << 0.7 * stable_step << " s, or to auto." << std::endl;
+            << 0.7 * stable_step
+            << " s, or to auto, or set Immersed cells/Coupling = "
+               "semi-implicit."
+            << std::endl;
     const InteractionParameters &contact = parameters.interactions;
     if (cells.size() > 1 && contact.repulsion_pressure > 0. &&
         contact.repulsion_range < spacing)
@@ -330,6 +340,19 @@ namespace rbc_ifem
         << std::endl;
   }
 
+  void
+  IFEMSimulation::setup_semi_implicit_load()
+  {
+    semi_implicit = std::make_unique<SemiImplicitLoad>(*coupling,
+                                                       cells,
+                                                       fluid.zero_constraints(),
+                                                       time_step);
+    fluid.set_velocity_load([this](const auto &v, auto &result) {
+      TimerOutput::Scope scope(timer, "coupling: implicit force load");
+      (*semi_implicit)(v, result);
+    });
+  }
+
   StepReport
   IFEMSimulation::advance()
   {
@@ -341,6 +364,11 @@ namespace rbc_ifem
       TimerOutput::Scope scope(timer, "membrane forces");
       forces = cells.compute_forces();
     }
+    if (parameters.immersed.coupling == CouplingScheme::semi_implicit)
+      {
+        TimerOutput::Scope scope(timer, "membrane stiffness");
+        cells.linearize();
+      }
     for (const Tensor<1, 3> &force : forces)
       if (!std::isfinite(force.norm()))
         stop("the membrane forces are not finite", last_good);
@@ -376,14 +404,15 @@ namespace rbc_ifem
           parameters.immersed.max_step_displacement * mesh_size))
       {
         std::ostringstream why;
-        why
-          << "a membrane point moved " << largest_move
-          << " µm in one step, more than "
-          << "Immersed cells/Maximum step displacement = "
-          << parameters.immersed.max_step_displacement
-          << " of the fluid mesh size " << mesh_size
-          << " µm: the explicit coupling is unstable; reduce Time/Time step = "
-          << dt << " s";
+        why << "a membrane point moved " << largest_move
+            << " µm in one step, more than "
+            << "Immersed cells/Maximum step displacement = "
+            << parameters.immersed.max_step_displacement
+            << " of the fluid mesh size " << mesh_size << " µm: the "
+            << name_of(parameters.immersed.coupling, coupling_scheme_names())
+            << " coupling is unstable or the step too long; reduce Time/Time "
+               "step = "
+            << dt << " s";
         stop(why.str(), last_good);
       }
 
@@ -767,9 +796,11 @@ namespace rbc_ifem
                 << last * to_ml_min_mmhg << std::endl;
       }
     const std::vector<CellShape> shapes = cells.shapes();
-    double deformation = 0., volume_drift = 0., area_drift = 0.;
+    double deformation = 0., volume_drift = 0., area_drift = 0.,
+           local_area = 0.;
     for (unsigned int c = 0; c < shapes.size(); ++c)
       {
+        local_area = std::max(local_area, shapes[c].largest_local_area_change);
         deformation += shapes[c].deformation_index / shapes.size();
         const double dv = shapes[c].volume / cells.reference_volume(c) - 1.;
         const double da = shapes[c].area / cells.reference_area(c) - 1.;
@@ -781,7 +812,8 @@ namespace rbc_ifem
           << (shapes.size() > 1 ? " (mean)" : "") << ", volume change "
           << 100. * volume_drift << "%, area change " << 100. * area_drift
           << "%" << (shapes.size() > 1 ? " (the largest over the cells)" : "")
-          << std::endl;
+          << ", largest local area change " << 100. * local_area
+          << "% (the cell field area_change of cell_C.pvd)" << std::endl;
   }
 
   void

@@ -81,6 +81,47 @@ namespace rbc_ifem
 
   namespace
   {
+    /// The surface at one quadrature point, from its tangents.
+    template <typename Number>
+    struct SurfacePoint
+    {
+      Tensor<2, 2, Number> g_inverse; ///< the inverse metric g^{αβ}
+      Number               I1;        ///< tr(G⁻¹g) = λ1² + λ2²
+      Number               J;         ///< λ1λ2 = dA/dA0
+      Number               dA;        ///< sqrt(det g) times the weight
+      Tensor<1, 3, Number> normal_dA; ///< t0 × t1 times the weight
+    };
+
+    /**
+     * SurfacePoint of the tangents @p tangent at a quadrature point of
+     * weight @p w, whose reference surface has the inverse metric
+     * @p G_inverse and the area element @p reference_jacobian.
+     */
+    template <typename Number>
+    SurfacePoint<Number>
+    surface_point(const Tensor<1, 3, Number> (&tangent)[2],
+                  const Tensor<2, 2> &G_inverse,
+                  const double        reference_jacobian,
+                  const double        w)
+    {
+      using std::sqrt;
+      Tensor<2, 2, Number> g;
+      for (unsigned int alpha = 0; alpha < 2; ++alpha)
+        for (unsigned int beta = 0; beta < 2; ++beta)
+          g[alpha][beta] = tangent[alpha] * tangent[beta];
+      SurfacePoint<Number> point;
+      point.g_inverse       = invert(g);
+      const Number jacobian = sqrt(determinant(g));
+      point.I1              = 0.;
+      for (unsigned int alpha = 0; alpha < 2; ++alpha)
+        for (unsigned int beta = 0; beta < 2; ++beta)
+          point.I1 += G_inverse[alpha][beta] * g[alpha][beta];
+      point.J         = jacobian / reference_jacobian;
+      point.dA        = jacobian * w;
+      point.normal_dA = cross_product_3d(tangent[0], tangent[1]) * w;
+      return point;
+    }
+
     /**
      * The bending energy of one node from its sums, κ/2 m |y/m - c0 ν|²
      * with ν = w/|w| (Membrane): for any number type, so that its Hessian
@@ -98,6 +139,30 @@ namespace rbc_ifem
       const Number               norm_w = sqrt(w * w);
       const Tensor<1, 3, Number> u      = y / m - c0 * w / norm_w;
       return kappa / 2. * m * (u * u);
+    }
+
+    /**
+     * Call @p f(number, law) with the membrane's elastic law and a forward-
+     * mode Sacado number for a cell's DoFs: of a length fixed at compile
+     * time for degrees 1 and 2 (no heap allocation per operation, several
+     * times faster than DFad), DFad beyond.
+     */
+    template <typename Function>
+    void
+    with_cell_number(const unsigned int degree,
+                     const ElasticLaw  &law,
+                     const Function    &f)
+    {
+      std::visit(
+        [&](const auto &l) {
+          if (degree == 1)
+            f(Sacado::Fad::SFad<double, 3 * 4>(), l);
+          else if (degree == 2)
+            f(Sacado::Fad::SFad<double, 3 * 9>(), l);
+          else
+            f(Sacado::Fad::DFad<double>(), l);
+        },
+        law);
     }
 
     /// The Hessian of nodal_bending_energy() in (y, m, w), 7 × 7.
@@ -124,6 +189,18 @@ namespace rbc_ifem
       return hessian;
     }
   } // namespace
+
+  /**
+   * The derivatives of E by the sums, gathered at one quadrature point:
+   * the integrand of cell_potential() there is point_potential().
+   */
+  struct Membrane::PointWeights
+  {
+    double       area = 0., volume = 0.; ///< d_A, d_V
+    double       mass = 0.;              ///< Σ_a d_m N_a
+    Tensor<1, 3> normal;                 ///< Σ_a d_w N_a
+    Tensor<1, 3> laplacian[2];           ///< Σ_a d_y ∂_α N_a
+  };
 
   void
   MembraneStiffness::vmult_add(Vector<double>       &dst,
@@ -230,6 +307,13 @@ namespace rbc_ifem
             reference_jacobian[c][q]       = std::sqrt(determinant(metric));
           }
       }
+    for (unsigned int c = 0; c < cell_dofs.size(); ++c)
+      {
+        reference_cell_areas.push_back(0.);
+        for (unsigned int q = 0; q < n_q; ++q)
+          reference_cell_areas[c] +=
+            reference_jacobian[c][q] * quadrature.weight(q);
+      }
     area0   = area(reference);
     volume0 = volume(reference);
   }
@@ -274,7 +358,6 @@ namespace rbc_ifem
                        const unsigned int         cell,
                        const std::vector<Number> &x) const
   {
-    using std::sqrt;
     const unsigned int n_a = scalar_fe.n_dofs_per_cell();
     CellTerms<Number>  terms;
     terms.laplacian.resize(n_a);
@@ -291,28 +374,16 @@ namespace rbc_ifem
             for (unsigned int alpha = 0; alpha < 2; ++alpha)
               tangent[alpha][d] += x[k] * shape_gradients(a, q)[alpha];
           }
-        Tensor<2, 2, Number> g;
-        for (unsigned int alpha = 0; alpha < 2; ++alpha)
-          for (unsigned int beta = 0; beta < 2; ++beta)
-            g[alpha][beta] = tangent[alpha] * tangent[beta];
-        const Number               det_g     = determinant(g);
-        const Tensor<2, 2, Number> g_inverse = invert(g);
-        const Number               jacobian  = sqrt(det_g);
-        const double               w         = quadrature.weight(q);
-
-        // Stretch invariants: tr(G⁻¹g) = λ1² + λ2², J = λ1λ2 = dA/dA0.
-        const Tensor<2, 2> &G_inverse = reference_metric_inverse[cell][q];
-        Number              I1        = 0.;
-        for (unsigned int alpha = 0; alpha < 2; ++alpha)
-          for (unsigned int beta = 0; beta < 2; ++beta)
-            I1 += G_inverse[alpha][beta] * g[alpha][beta];
-        const Number J = jacobian / reference_jacobian[cell][q];
-        terms.in_plane +=
-          law.energy_density(I1, J) * reference_jacobian[cell][q] * w;
-
-        const Number               dA = jacobian * w;
-        const Tensor<1, 3, Number> normal_dA =
-          cross_product_3d(tangent[0], tangent[1]) * w;
+        const double               w = quadrature.weight(q);
+        const SurfacePoint<Number> point =
+          surface_point(tangent,
+                        reference_metric_inverse[cell][q],
+                        reference_jacobian[cell][q],
+                        w);
+        const Number               &dA        = point.dA;
+        const Tensor<1, 3, Number> &normal_dA = point.normal_dA;
+        terms.in_plane += law.energy_density(point.I1, point.J) *
+                          reference_jacobian[cell][q] * w;
         terms.area += dA;
         terms.volume += position * normal_dA / 3.;
         for (unsigned int a = 0; a < n_a; ++a)
@@ -323,8 +394,8 @@ namespace rbc_ifem
             for (unsigned int alpha = 0; alpha < 2; ++alpha)
               for (unsigned int beta = 0; beta < 2; ++beta)
                 {
-                  const Number weight =
-                    g_inverse[alpha][beta] * shape_gradients(a, q)[alpha] * dA;
+                  const Number weight = point.g_inverse[alpha][beta] *
+                                        shape_gradients(a, q)[alpha] * dA;
                   terms.laplacian[a] += weight * tangent[beta];
                 }
           }
@@ -425,10 +496,8 @@ namespace rbc_ifem
       return energy;
 
     // F = -dE/dx: per cell, the derivative of its own energy plus the
-    // nodal and global sums it feeds, weighted by dE/d(sum). The cell's
-    // derivative is taken in forward mode with a Sacado number whose length
-    // (the cell's DoFs) is known at compile time for the degrees in use:
-    // no heap allocation per operation, several times faster than DFad.
+    // nodal and global sums it feeds, weighted by dE/d(sum), in forward
+    // mode (with_cell_number()).
     forces                             = 0.;
     const auto subtract_cell_gradients = [&](auto ad_number, const auto &law) {
       using ADNumber = decltype(ad_number);
@@ -444,16 +513,7 @@ namespace rbc_ifem
             forces[cell_dofs[c][k]] -= phi.dx(k);
         }
     };
-    std::visit(
-      [&](const auto &law) {
-        if (parameters.degree == 1)
-          subtract_cell_gradients(Sacado::Fad::SFad<double, 3 * 4>(), law);
-        else if (parameters.degree == 2)
-          subtract_cell_gradients(Sacado::Fad::SFad<double, 3 * 9>(), law);
-        else
-          subtract_cell_gradients(Sacado::Fad::DFad<double>(), law);
-      },
-      elastic_law);
+    with_cell_number(parameters.degree, elastic_law, subtract_cell_gradients);
     return energy;
   }
 
@@ -470,6 +530,36 @@ namespace rbc_ifem
         phi += d.laplacian[i] * terms.laplacian[a] + d.mass[i] * terms.mass[a] +
                d.normal[i] * terms.normal[a];
       }
+    return phi;
+  }
+
+  template <typename Number, typename Law>
+  Number
+  Membrane::point_potential(const Law                   &law,
+                            const unsigned int           c,
+                            const unsigned int           q,
+                            const std::array<Number, 9> &z,
+                            const PointWeights          &weights) const
+  {
+    Tensor<1, 3, Number> position, tangent[2];
+    for (unsigned int d = 0; d < 3; ++d)
+      {
+        position[d]   = z[d];
+        tangent[0][d] = z[3 + d];
+        tangent[1][d] = z[6 + d];
+      }
+    const double               w     = quadrature.weight(q);
+    const SurfacePoint<Number> point = surface_point(
+      tangent, reference_metric_inverse[c][q], reference_jacobian[c][q], w);
+    Number phi =
+      law.energy_density(point.I1, point.J) * reference_jacobian[c][q] * w +
+      (weights.area + weights.mass) * point.dA +
+      weights.volume / 3. * (position * point.normal_dA) +
+      weights.normal * point.normal_dA;
+    for (unsigned int alpha = 0; alpha < 2; ++alpha)
+      for (unsigned int beta = 0; beta < 2; ++beta)
+        phi += point.g_inverse[alpha][beta] * point.dA *
+               (weights.laplacian[alpha] * tangent[beta]);
     return phi;
   }
 
@@ -493,10 +583,13 @@ namespace rbc_ifem
     K.local.reinit(stiffness_sparsity);
     K.rank_one.clear();
 
-    // Per cell, second derivatives of its potential (nested forward mode),
-    // and the first derivatives of its terms: of A and V for the penalties'
-    // rank-one parts, of each node's sums (y, m, w: 7 rows per local node)
-    // for the bending chain below.
+    // Per cell: the first derivatives of its terms (one forward pass), of A
+    // and V for the penalties' rank-one parts and of each node's sums (y,
+    // m, w: 7 rows per local node) for the bending chain below; and the
+    // Hessian of its potential φ_c (cell_potential()). φ_c's integrand
+    // depends on the DoFs only through the point's position and tangents
+    // z = L_q x (9 numbers), so H_c = Σ_q L_qᵀ H_q L_q, with the 9 × 9 H_q
+    // by nested forward mode: far cheaper than nesting over the cell.
     const unsigned int n_a = scalar_fe.n_dofs_per_cell(),
                        n   = fe.n_dofs_per_cell();
     Vector<double> area_gradient(dof_handler.n_dofs()),
@@ -505,49 +598,75 @@ namespace rbc_ifem
                                                     FullMatrix<double>(7 * n_a,
                                                                        n));
     const auto add_cell_hessians = [&](auto ad_number, const auto &law) {
-      using Second = decltype(ad_number);
-      using First  = typename Second::value_type;
-      FullMatrix<double> cell_matrix(n, n);
+      using ADNumber = decltype(ad_number);
+      using First    = Sacado::Fad::SFad<double, 9>;
+      using Second   = Sacado::Fad::SFad<First, 9>;
+      FullMatrix<double> cell_matrix(n, n), L(9, n), H(9, 9), HL(9, n);
       for (unsigned int c = 0; c < cell_dofs.size(); ++c)
         {
           const std::vector<double> values = local_positions(c, x);
-          std::vector<Second>       local(n);
+          std::vector<ADNumber>     local(n);
           for (unsigned int k = 0; k < n; ++k)
-            local[k] = Second(n, k, First(n, k, values[k]));
-          const CellTerms<Second> terms = cell_terms(law, c, local);
-          const Second            phi   = cell_potential(c, terms, d);
+            local[k] = ADNumber(n, k, values[k]);
+          const CellTerms<ADNumber> terms = cell_terms(law, c, local);
+          FullMatrix<double>       &J     = sum_derivatives[c];
           for (unsigned int k = 0; k < n; ++k)
             {
-              for (unsigned int l = 0; l < n; ++l)
-                cell_matrix(k, l) = phi.dx(k).dx(l);
-              area_gradient[cell_dofs[c][k]] += terms.area.dx(k).val();
-              volume_gradient[cell_dofs[c][k]] += terms.volume.dx(k).val();
+              area_gradient[cell_dofs[c][k]] += terms.area.dx(k);
+              volume_gradient[cell_dofs[c][k]] += terms.volume.dx(k);
               for (unsigned int a = 0; a < n_a; ++a)
                 {
-                  FullMatrix<double> &J = sum_derivatives[c];
                   for (unsigned int e = 0; e < 3; ++e)
                     {
-                      J(7 * a + e, k)     = terms.laplacian[a][e].dx(k).val();
-                      J(7 * a + 4 + e, k) = terms.normal[a][e].dx(k).val();
+                      J(7 * a + e, k)     = terms.laplacian[a][e].dx(k);
+                      J(7 * a + 4 + e, k) = terms.normal[a][e].dx(k);
                     }
-                  J(7 * a + 3, k) = terms.mass[a].dx(k).val();
+                  J(7 * a + 3, k) = terms.mass[a].dx(k);
                 }
+            }
+
+          cell_matrix = 0.;
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              L = 0.;
+              PointWeights weights;
+              weights.area   = d.area;
+              weights.volume = d.volume;
+              for (unsigned int k = 0; k < n; ++k)
+                {
+                  const auto [e, a] = fe.system_to_component_index(k);
+                  L(e, k)           = shape_values(a, q);
+                  L(3 + e, k)       = shape_gradients(a, q)[0];
+                  L(6 + e, k)       = shape_gradients(a, q)[1];
+                }
+              for (unsigned int a = 0; a < n_a; ++a)
+                {
+                  const unsigned int i = cell_nodes[c][a];
+                  weights.mass += d.mass[i] * shape_values(a, q);
+                  weights.normal += shape_values(a, q) * d.normal[i];
+                  for (unsigned int alpha = 0; alpha < 2; ++alpha)
+                    weights.laplacian[alpha] +=
+                      shape_gradients(a, q)[alpha] * d.laplacian[i];
+                }
+              std::array<Second, 9> z;
+              for (unsigned int j = 0; j < 9; ++j)
+                {
+                  double value = 0.;
+                  for (unsigned int k = 0; k < n; ++k)
+                    value += L(j, k) * values[k];
+                  z[j] = Second(9, j, First(9, j, value));
+                }
+              const Second phi = point_potential(law, c, q, z, weights);
+              for (unsigned int j = 0; j < 9; ++j)
+                for (unsigned int l = 0; l < 9; ++l)
+                  H(j, l) = phi.dx(j).dx(l);
+              H.mmult(HL, L);
+              L.Tmmult(cell_matrix, HL, /*adding=*/true);
             }
           K.local.add(cell_dofs[c], cell_matrix);
         }
     };
-    std::visit(
-      [&](const auto &law) {
-        using Sacado::Fad::DFad;
-        using Sacado::Fad::SFad;
-        if (parameters.degree == 1)
-          add_cell_hessians(SFad<SFad<double, 3 * 4>, 3 * 4>(), law);
-        else if (parameters.degree == 2)
-          add_cell_hessians(SFad<SFad<double, 3 * 9>, 3 * 9>(), law);
-        else
-          add_cell_hessians(DFad<DFad<double>>(), law);
-      },
-      elastic_law);
+    with_cell_number(parameters.degree, elastic_law, add_cell_hessians);
 
     // The bending energy's curvature in each node's sums s_i = (y, m, w):
     // J_iᵀ B_i J_i, with J_i = ∂s_i/∂x over the cells around the node.
@@ -592,6 +711,21 @@ namespace rbc_ifem
   Membrane::nodal_vector_areas(const Vector<double> &x) const
   {
     return sum_cell_terms(x).normal;
+  }
+
+  Vector<double>
+  Membrane::local_area_changes(const Vector<double> &x) const
+  {
+    Vector<double> changes(cell_dofs.size());
+    std::visit(
+      [&](const auto &law) {
+        for (unsigned int c = 0; c < cell_dofs.size(); ++c)
+          changes[c] = cell_terms(law, c, local_positions(c, x)).area /
+                         reference_cell_areas[c] -
+                       1.;
+      },
+      elastic_law);
+    return changes;
   }
 
   double
@@ -642,6 +776,10 @@ namespace rbc_ifem
                                std::vector<std::string>(3, field_name),
                                DataOut<2, 3>::type_dof_data,
                                vector_field);
+    const Vector<double> area_changes = local_area_changes(x);
+    data_out.add_data_vector(area_changes,
+                             "area_change",
+                             DataOut<2, 3>::type_cell_data);
     data_out.build_patches(mapping,
                            std::max(2u, parameters.degree),
                            DataOut<2, 3>::curved_inner_cells);

@@ -39,6 +39,8 @@ namespace rbc_ifem
     double taylor_deformation = 0.;
     /// Angle of L's axis from the x axis, in (-π/2, π/2] [rad].
     double inclination = 0.;
+    /// max over the membrane's cells of |A/A0 - 1|: the local area change.
+    double largest_local_area_change = 0.;
   };
 
   /**
@@ -163,6 +165,12 @@ namespace rbc_ifem
     set_positions(const std::vector<Vector<double>> &positions);
 
   private:
+    /// One Vector per cell from values point by point, and back.
+    std::vector<Vector<double>>
+    per_cell(const std::vector<Tensor<1, 3>> &values) const;
+    std::vector<Tensor<1, 3>>
+    per_point(const std::vector<Vector<double>> &values) const;
+
     const CellMembranes                     references;
     const MappingQ<2, 3>                    flat_mapping;
     std::vector<std::unique_ptr<Membrane>>  cell_membranes;

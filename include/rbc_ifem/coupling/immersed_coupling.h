@@ -118,6 +118,12 @@ namespace rbc_ifem
     unsigned int                                        n_membrane_points = 0;
     /// (local DoF k, velocity component c) of every velocity shape function.
     std::vector<std::pair<unsigned int, unsigned int>> velocity_shape_functions;
+    /**
+     * The velocity shape functions' values φ_k(x_I) at every particle of
+     * this rank, in the order for_each_particle_cell() visits them: taken
+     * in place(), used by spread() and interpolate().
+     */
+    std::vector<double> shape_values;
   };
 } // namespace rbc_ifem
 

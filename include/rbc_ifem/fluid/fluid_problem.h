@@ -17,6 +17,7 @@
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
 #include <deal.II/lac/trilinos_precondition.h>
 
+#include <functional>
 #include <limits>
 #include <map>
 #include <memory>
@@ -134,6 +135,9 @@ namespace rbc_ifem
   struct FluidState
   {
     std::vector<double> solution;
+    /// The solution one step earlier, for the extrapolated first guess of
+    /// a run with a velocity load (empty otherwise).
+    std::vector<double> earlier_solution;
     double              frame_velocity = 0.;
     double              residual_scale = 0.;
 
@@ -141,7 +145,7 @@ namespace rbc_ifem
     void
     serialize(Archive &archive, const unsigned int)
     {
-      archive &solution &frame_velocity &residual_scale;
+      archive &solution &earlier_solution &frame_velocity &residual_scale;
     }
   };
 
@@ -230,6 +234,27 @@ namespace rbc_ifem
     void
     set_body_force(const TrilinosWrappers::MPI::BlockVector &load);
 
+    /**
+     * A load that depends linearly on the new velocity, f = f_body - L v:
+     * the semi-implicit coupling's L = Δt Sᵀ K S, the membrane forces'
+     * change over the step (SemiImplicitLoad). The function adds L v to its
+     * second argument (the layout of the body force: velocity block, owned,
+     * condensed with zero_constraints()) for the field v of its first
+     * (ghosted, constraints applied).
+     */
+    using VelocityLoad =
+      std::function<void(const TrilinosWrappers::MPI::BlockVector &,
+                         TrilinosWrappers::MPI::BlockVector &)>;
+
+    /**
+     * Use @p load in the residual and the operator of every solve from the
+     * next step on. L is never assembled: FGMRES applies J + L with the
+     * preconditioner of J, and the first guess of a step becomes the
+     * extrapolation 2 vⁿ - vⁿ⁻¹ (which halves the iterations).
+     */
+    void
+    set_velocity_load(const VelocityLoad &load);
+
     /// Advance the solution by one time step Δt. Throws SolverFailure.
     StepReport
     advance();
@@ -277,8 +302,20 @@ namespace rbc_ifem
     /// The load of FlowDrive::pressure_gradient, ∫ G e_x · φ_J, once.
     void
     assemble_drive_load();
-    /// Solve J δ = -R and update; returns FGMRES's iterations and final
-    /// residual.
+    /// Every entry of @p v (owned) in DoF order, the same on every rank.
+    std::vector<double>
+    gather(const TrilinosWrappers::MPI::BlockVector &v) const;
+    /// The owned entries of @p values (as gather() gives them) into @p v.
+    void
+    scatter(const std::vector<double>          &values,
+            TrilinosWrappers::MPI::BlockVector &v) const;
+    /// Add the velocity load's L v to @p result for @p v (owned, any
+    /// values at constrained DoFs: zero constraints are applied first).
+    void
+    add_field_load(const TrilinosWrappers::MPI::BlockVector &v,
+                   TrilinosWrappers::MPI::BlockVector       &result) const;
+    /// Solve (J + L) δ = -R and update; returns FGMRES's iterations and
+    /// final residual.
     std::pair<unsigned int, double>
     solve_linear_system();
 
@@ -310,11 +347,18 @@ namespace rbc_ifem
     std::unique_ptr<TrilinosWrappers::PreconditionAMG> velocity_amg;
     std::unique_ptr<TrilinosWrappers::PreconditionILU> schur_ilu;
 
-    TrilinosWrappers::MPI::BlockVector current;    ///< ghosted (v, p)
-    TrilinosWrappers::MPI::BlockVector previous;   ///< ghosted (vⁿ, pⁿ)
+    TrilinosWrappers::MPI::BlockVector current;  ///< ghosted (v, p)
+    TrilinosWrappers::MPI::BlockVector previous; ///< ghosted (vⁿ, pⁿ)
+    /// Owned (vⁿ⁻¹, pⁿ⁻¹) in the current frame, kept with a velocity load
+    /// (size 0 until its first step): the first guess of a step is then
+    /// 2 vⁿ - vⁿ⁻¹, which halves the semi-implicit coupling's iterations.
+    TrilinosWrappers::MPI::BlockVector earlier;
     TrilinosWrappers::MPI::BlockVector residual;   ///< owned
     TrilinosWrappers::MPI::BlockVector update;     ///< owned
     TrilinosWrappers::MPI::BlockVector body_force; ///< owned load vector
+    VelocityLoad                       velocity_load;
+    /// Scratch of add_field_load(): owned and ghosted copies of v.
+    mutable TrilinosWrappers::MPI::BlockVector load_owned, load_ghosted;
     TrilinosWrappers::MPI::BlockVector drive_load; ///< owned, of the drive
     /// The matched inlet and outlet faces of a periodic segment.
     std::vector<GridTools::PeriodicFacePair<DoFHandler<3>::cell_iterator>>

@@ -4,6 +4,7 @@
 #include <rbc_ifem/coupling/cell_population.h>
 #include <rbc_ifem/coupling/contact_gaps.h>
 #include <rbc_ifem/coupling/immersed_coupling.h>
+#include <rbc_ifem/coupling/semi_implicit_load.h>
 #include <rbc_ifem/coupling/time_step_limit.h>
 #include <rbc_ifem/fluid/fluid_problem.h>
 #include <rbc_ifem/ifem/flow_domain.h>
@@ -102,11 +103,17 @@ namespace rbc_ifem
     check_uptake_input() const;
     /**
      * The end-of-run lines: @p n_run steps in @p wall_seconds, DM first and
-     * last (and in mL/(min mmHg)), the cells' deformation index and their
-     * volume and area drift.
+     * last (and in mL/(min mmHg)), the cells' deformation index, their
+     * volume and area drift and the largest local area change.
      */
     void
     report_summary(const unsigned int n_run, const double wall_seconds) const;
+    /**
+     * Immersed cells/Coupling = semi-implicit: the fluid's velocity load
+     * L = Δt Sᵀ K S (SemiImplicitLoad).
+     */
+    void
+    setup_semi_implicit_load();
     /// Steps 2-6 and the frame update; returns the fluid's report.
     StepReport
     advance();
@@ -162,8 +169,10 @@ namespace rbc_ifem
     FluidProblem                       fluid;
     CellPopulation                     cells;
     std::unique_ptr<ImmersedCoupling>  coupling;
-    std::vector<RunObserver *>         observers;
-    RunRecord                          record;
+    /// The semi-implicit coupling's load; null for the explicit coupling.
+    std::unique_ptr<SemiImplicitLoad> semi_implicit;
+    std::vector<RunObserver *>        observers;
+    RunRecord                         record;
     /// Whether anything can touch: several cells, or a wall.
     bool   contacts  = false;
     double mesh_size = 0.; ///< fluid h at the membranes [µm]

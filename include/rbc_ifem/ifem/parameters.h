@@ -1,6 +1,8 @@
 #ifndef rbc_ifem_ifem_parameters_h
 #define rbc_ifem_ifem_parameters_h
 
+#include <rbc_ifem/base/parameter_tools.h>
+
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/tensor.h>
 
@@ -10,6 +12,20 @@
 namespace rbc_ifem
 {
   using namespace dealii;
+
+  /// How the membrane forces enter the fluid step (Immersed cells/Coupling).
+  enum class CouplingScheme
+  {
+    /// the forces at the start of the step (the paper's): Δt is bounded by
+    /// the membrane stiffness
+    explicit_forces,
+    /// the forces at its end, linearised with the tangent stiffness K:
+    /// the fluid operator gains Δt Sᵀ K S
+    semi_implicit
+  };
+
+  const SelectionNames<CouplingScheme> &
+  coupling_scheme_names();
 
   /**
    * Time stepping of the flowing runs (subsection "Time"). The initializers
@@ -31,9 +47,12 @@ namespace rbc_ifem
     double
     plasma_time_step() const;
     /// Δt [s] of a run with immersed cells whose explicit-coupling
-    /// estimate is @p limit: half of it for auto.
+    /// estimate is @p limit: for auto half of it with the explicit
+    /// coupling, semi_implicit_step_factor() times it with the semi-implicit.
     double
-    coupled_time_step(const double limit) const;
+    coupled_time_step(const double limit, const CouplingScheme scheme) const;
+    /// Time step = auto's Δt over the explicit estimate, semi-implicit.
+    static constexpr double semi_implicit_step_factor = 10.;
 
     void
     add_parameters(ParameterHandler &prm);
@@ -48,6 +67,7 @@ namespace rbc_ifem
   {
     bool enabled      = false; ///< carry the cells of subsection Layout
     bool follow_cells = true;  ///< frame velocity = the cells' mean velocity
+    CouplingScheme coupling         = CouplingScheme::explicit_forces;
     unsigned int diffusion_interval = 0; ///< DM every this many steps; 0: never
     unsigned int checkpoint_interval = 0; ///< 0: never
     bool         resume = false; ///< from Output directory/checkpoint.bin

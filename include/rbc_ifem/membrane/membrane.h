@@ -134,6 +134,14 @@ namespace rbc_ifem
     std::vector<Tensor<1, 3>>
     nodal_vector_areas(const Vector<double> &x) const;
 
+    /**
+     * A/A0 - 1 of every cell of the membrane mesh on the surface x (A0 its
+     * area on the reference surface): the local area change, which the
+     * global area penalty does not hold.
+     */
+    Vector<double>
+    local_area_changes(const Vector<double> &x) const;
+
     /// Area [µm²] and enclosed volume [µm³] of the surface x.
     double
     area(const Vector<double> &x) const;
@@ -149,8 +157,9 @@ namespace rbc_ifem
      * The deformed surface x as NAME.vtu in @p directory (the caller decides
      * which rank writes), curved by a MappingFEField on x, with the
      * displacement x - X and, as further vector fields, each (name, vector)
-     * of @p dof_vectors (one entry per DoF, like the forces); the file
-     * carries @p field_data.
+     * of @p dof_vectors (one entry per DoF, like the forces), and the
+     * local area change A/A0 - 1 of every cell as the cell field
+     * area_change; the file carries @p field_data.
      */
     void
     write_vtu(const Vector<double> &x,
@@ -193,6 +202,21 @@ namespace rbc_ifem
     cell_potential(const unsigned int       cell,
                    const CellTerms<Number> &terms,
                    const Multipliers       &d) const;
+
+    struct PointWeights;
+
+    /**
+     * The integrand of cell_potential() at quadrature point @p q of
+     * @p cell, times its weight, from the point's position and tangents
+     * @p z = (x, ∂x/∂ξ1, ∂x/∂ξ2) and the sums' derivatives gathered there.
+     */
+    template <typename Number, typename Law>
+    Number
+    point_potential(const Law                   &law,
+                    const unsigned int           cell,
+                    const unsigned int           q,
+                    const std::array<Number, 9> &z,
+                    const PointWeights          &weights) const;
 
     /// The DoFs of the cells around node @p i, sorted.
     std::vector<types::global_dof_index>
@@ -247,8 +271,10 @@ namespace rbc_ifem
     Table<2, double>       shape_values;
     Table<2, Tensor<1, 2>> shape_gradients;
 
-    double area0   = 0.;
-    double volume0 = 0.;
+    /// Every cell's area on the reference surface [µm²].
+    std::vector<double> reference_cell_areas;
+    double              area0   = 0.;
+    double              volume0 = 0.;
   };
 } // namespace rbc_ifem
 

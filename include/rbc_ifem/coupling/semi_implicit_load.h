@@ -1,0 +1,50 @@
+#ifndef rbc_ifem_coupling_semi_implicit_load_h
+#define rbc_ifem_coupling_semi_implicit_load_h
+
+#include <rbc_ifem/coupling/cell_population.h>
+#include <rbc_ifem/coupling/immersed_coupling.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_parallel_block_vector.h>
+
+
+namespace rbc_ifem
+{
+  /**
+   * The load of the semi-implicit coupling (Immersed cells/Coupling =
+   * semi-implicit, doc/ifem.md): the membrane forces at the end of the
+   * step, linearised about its start with the cells' tangent stiffness K,
+   *
+   *   F(xⁿ + δ) ≈ Fⁿ - K δ,   δ = Δt S v,
+   *
+   * so that the fluid's load is Sᵀ Fⁿ - L v with L v = Δt Sᵀ K S v (S
+   * interpolates at the membrane points, Sᵀ spreads). Fⁿ is spread as in
+   * the explicit coupling; this object is the L that
+   * FluidProblem::set_velocity_load() takes: one interpolation, one
+   * product with K (CellPopulation::linearize() at the step's start) and
+   * one spreading per FGMRES iteration.
+   */
+  class SemiImplicitLoad
+  {
+  public:
+    /// L of @p cells, coupled by @p coupling, with the fluid's zero
+    /// @p constraints; @p time_step is read at every use.
+    SemiImplicitLoad(const ImmersedCoupling          &coupling,
+                     const CellPopulation            &cells,
+                     const AffineConstraints<double> &constraints,
+                     const double                    &time_step);
+
+    /// Add L @p v (ghosted) to @p result (owned, compressed here).
+    void
+    operator()(const TrilinosWrappers::MPI::BlockVector &v,
+               TrilinosWrappers::MPI::BlockVector       &result) const;
+
+  private:
+    const ImmersedCoupling          &coupling;
+    const CellPopulation            &cells;
+    const AffineConstraints<double> &constraints;
+    const double                    &time_step;
+  };
+} // namespace rbc_ifem
+
+#endif

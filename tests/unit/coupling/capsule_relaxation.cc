@@ -1,14 +1,14 @@
 // A stiff spherical capsule (K = 500 pN/µm), stretched into an ellipsoid of
-// the same volume, relaxes towards its sphere in the plasma at rest, with
-// the semi-implicit coupling (SemiImplicitLoad) at 8 times the explicit-
-// coupling limit (where the explicit coupling diverges; at 20 times FGMRES
-// does not converge in 500 iterations with the Stokes preconditioner alone,
-// doc/ifem.md), over 120 steps, about one relaxation time:
+// the same volume, relaxes back to its sphere in the plasma at rest, with
+// the semi-implicit coupling (SemiImplicitLoad) at 20 times the explicit-
+// coupling limit, over 300 steps (about seven relaxation times), on a fluid
+// mesh that keeps the paper's rule (membrane point spacing 0.54 µm below
+// h/2 = 0.63 µm):
 //
-// - every step converges and the elastic energy falls at every step, to
-//   less than 0.15 of its start;
-// - the spread of the radii falls below 0.45 of its start, and the volume
-//   is kept.
+// - every step converges and the elastic energy falls at every step;
+// - the capsule ends a sphere again: its energy above the sphere's (the
+//   reference shape's bending energy) falls below 1% of the start's, the
+//   spread of its radii below 0.15 of the start's, and its volume is kept.
 //
 // The loop is that of IFEMSimulation::advance() with the frame at rest.
 
@@ -73,7 +73,7 @@ main(int argc, char *argv[])
   parameters.membrane.area_dilation_modulus = 500.;
   parameters.fluid.inlet_mean_speed         = 0.;
   parameters.fluid.frame_velocity           = 0.;
-  parameters.mesh.fluid_band_refinements    = 1;
+  parameters.mesh.fluid_band_refinements    = 0;
   const FlowDomain domain                   = FlowDomain::capillary(parameters);
   CellPopulation   cells(domain.placements,
                        parameters.cells,
@@ -90,6 +90,8 @@ main(int argc, char *argv[])
         x[0][dofs[d]] =
           centre[d] + (x[0][dofs[d]] - centre[d]) / std::sqrt(1.1);
     }
+  cells.compute_forces();
+  const double sphere_energy = cells.energy();
   cells.set_positions(x);
   const double initial_spread = radius_spread(cells.points());
 
@@ -109,7 +111,7 @@ main(int argc, char *argv[])
                                     parameters.membrane,
                                     cells.point_spacing(),
                                     coupling.mesh_size_at_points());
-  const double                dt = 8. * limit.limit;
+  const double                dt = 20. * limit.limit;
   fluid.set_time_step(dt);
   TrilinosWrappers::MPI::BlockVector load(fluid.owned_partitioning(),
                                           communicator);
@@ -117,11 +119,12 @@ main(int argc, char *argv[])
     SemiImplicitLoad(coupling, cells, fluid.zero_constraints(), dt));
   std::cout << cells.n_points() << " membrane points, explicit limit "
             << limit.limit << " s, Δt = " << dt << " s; radius spread "
-            << initial_spread << std::endl;
+            << initial_spread << ", energy of the sphere " << sphere_energy
+            << " pN µm" << std::endl;
 
-  // About one relaxation time of the shape (measured: the spread of the
+  // About seven relaxation times of the shape (measured: the spread of the
   // radii falls by e in about 3 ms).
-  const unsigned int n_steps = 120;
+  const unsigned int n_steps = 300;
   double             energy = 0., first_energy = 0., largest_rise = -1e300;
   unsigned int       rises = 0;
   for (unsigned int step = 0; step <= n_steps; ++step)
@@ -156,12 +159,12 @@ main(int argc, char *argv[])
 
   check.near("steps whose energy rose", rises, 0., 0.);
   check.at_most("largest relative energy change per step", largest_rise, 0.);
-  check.at_most("energy at the end / at the start",
-                energy / first_energy,
-                0.15);
+  check.at_most("energy above the sphere's, at the end / at the start",
+                (energy - sphere_energy) / (first_energy - sphere_energy),
+                0.01);
   check.at_most("radius spread at the end / at the start",
                 radius_spread(cells.points()) / initial_spread,
-                0.45);
+                0.15);
   check.near("volume change at the end",
              cells.shapes()[0].volume / cells.reference_volume(0) - 1.,
              0.,

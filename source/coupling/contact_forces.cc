@@ -235,7 +235,14 @@ namespace rbc_ifem
         const auto [cj, nj] = owner[j];
         if (ci == cj || (image[i] && image[j]))
           return;
-        f(ci, ni, cj, nj, points[i] - points[j]);
+        const Tensor<1, 3> separation = points[i] - points[j];
+        f(ClosePair{ci,
+                    ni,
+                    cj,
+                    nj,
+                    separation,
+                    separation.norm(),
+                    reference_areas[ci][ni] * reference_areas[cj][nj]});
       });
   }
 
@@ -244,21 +251,17 @@ namespace rbc_ifem
                                   std::vector<Vector<double>> &forces) const
   {
     CellForceReport report;
-    for_each_close_pair(
-      x,
-      [&](const unsigned int  ci,
-          const unsigned int  ni,
-          const unsigned int  cj,
-          const unsigned int  nj,
-          const Tensor<1, 3> &separation) {
-        const double r      = separation.norm();
-        const double weight = reference_areas[ci][ni] * reference_areas[cj][nj];
-        const auto [psi, dpsi] = pair_density(r);
-        report.energy += weight * psi;
-        const Tensor<1, 3> force = -weight * dpsi / r * separation;
-        add_node_force(forces[ci], membranes[ci]->nodes()[ni], force);
-        add_node_force(forces[cj], membranes[cj]->nodes()[nj], -force);
-      });
+    for_each_close_pair(x, [&](const ClosePair &pair) {
+      const auto [psi, dpsi] = pair_density(pair.r);
+      report.energy += pair.weight * psi;
+      const Tensor<1, 3> force = -pair.weight * dpsi / pair.r * pair.separation;
+      add_node_force(forces[pair.ci],
+                     membranes[pair.ci]->nodes()[pair.ni],
+                     force);
+      add_node_force(forces[pair.cj],
+                     membranes[pair.cj]->nodes()[pair.nj],
+                     -force);
+    });
     return report;
   }
 
@@ -268,28 +271,23 @@ namespace rbc_ifem
     // E = w ψ(r): ∂²E/∂x_i² = w [ψ'' n nᵀ + ψ'/r (I - n nᵀ)], n = (x_i -
     // x_j)/r, and the opposite on the pair's cross terms.
     auto result = std::make_unique<PointBlockStiffness>();
-    for_each_close_pair(
-      x,
-      [&](const unsigned int  ci,
-          const unsigned int  ni,
-          const unsigned int  cj,
-          const unsigned int  nj,
-          const Tensor<1, 3> &separation) {
-        const double r      = separation.norm();
-        const double weight = reference_areas[ci][ni] * reference_areas[cj][nj];
-        const Tensor<1, 3> n      = separation / r;
-        const double       dpsi   = pair_density(r).second;
-        const Tensor<2, 3> normal = outer_product(n, n);
-        Tensor<2, 3>       identity;
-        for (unsigned int d = 0; d < 3; ++d)
-          identity[d][d] = 1.;
-        const Tensor<2, 3> H = weight * (pair_density_curvature(r) * normal +
-                                         dpsi / r * (identity - normal));
-        result->pairs.emplace_back(
-          PointBlockStiffness::PointDoFs(ci, membranes[ci]->nodes()[ni]),
-          PointBlockStiffness::PointDoFs(cj, membranes[cj]->nodes()[nj]),
-          H);
-      });
+    for_each_close_pair(x, [&](const ClosePair &pair) {
+      const Tensor<1, 3> n      = pair.separation / pair.r;
+      const double       dpsi   = pair_density(pair.r).second;
+      const Tensor<2, 3> normal = outer_product(n, n);
+      Tensor<2, 3>       identity;
+      for (unsigned int d = 0; d < 3; ++d)
+        identity[d][d] = 1.;
+      const Tensor<2, 3> H =
+        pair.weight * (pair_density_curvature(pair.r) * normal +
+                       dpsi / pair.r * (identity - normal));
+      result->pairs.emplace_back(
+        PointBlockStiffness::PointDoFs(pair.ci,
+                                       membranes[pair.ci]->nodes()[pair.ni]),
+        PointBlockStiffness::PointDoFs(pair.cj,
+                                       membranes[pair.cj]->nodes()[pair.nj]),
+        H);
+    });
     return result;
   }
 

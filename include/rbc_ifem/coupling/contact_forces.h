@@ -107,6 +107,15 @@ namespace rbc_ifem
    * periodic segment (a @p period along x) a pair's separation is the
    * shortest across the ends, so cells interact through them.
    */
+  /// Two points of different cells near each other (MembraneInteraction).
+  struct ClosePair
+  {
+    unsigned int ci, ni, cj, nj; ///< cell and node of each point
+    Tensor<1, 3> separation;     ///< x_i - x_j, the shortest across the ends
+    double       r;              ///< |x_i - x_j| [µm]
+    double       weight;         ///< a_i a_j, their reference areas [µm⁴]
+  };
+
   class MembraneInteraction : public CellForce
   {
   public:
@@ -131,9 +140,8 @@ namespace rbc_ifem
     double
     pair_density_curvature(const double r) const;
     /**
-     * Call @p f(ci, ni, cj, nj, separation) for every pair of points of
-     * different cells closer than the cutoff at @p x: cell and node of
-     * each, and x_i - x_j (the shortest across periodic ends).
+     * Call @p f(pair) for every ClosePair of points of different cells
+     * closer than the cutoff at @p x.
      */
     template <typename PairFunction>
     void

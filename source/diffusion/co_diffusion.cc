@@ -2,6 +2,7 @@
 #include <rbc_ifem/base/output.h>
 #include <rbc_ifem/base/solver_failure.h>
 #include <rbc_ifem/diffusion/co_diffusion.h>
+#include <rbc_ifem/diffusion/diagonally_scaled.h>
 #include <rbc_ifem/geometry/capillary_mesh.h>
 
 #include <deal.II/base/function.h>
@@ -15,13 +16,11 @@
 #include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/numerics/data_out.h>
-#include <deal.II/numerics/data_postprocessor.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
-#include <numeric>
 #include <sstream>
 
 namespace rbc_ifem
@@ -136,88 +135,11 @@ namespace rbc_ifem
       mutable TrilinosWrappers::MPI::Vector    residual;
     };
 
-    /**
-     * D_out K D_in: a linear operator K between block vectors, seen through
-     * diagonal scalings (stored as vectors). The solver works on the
-     * symmetrically Jacobi-scaled system S K S (S x) = S b, so that its
-     * residual weighs the plasma rows as much as the gas rows, whose αD is
-     * 10⁵ times larger: unscaled, a residual of 1e-10 left the flow with an
-     * error of 1e-4.
-     */
-    template <typename Operator>
-    class DiagonallyScaled
-    {
-    public:
-      DiagonallyScaled(const Operator                           &op,
-                       const TrilinosWrappers::MPI::BlockVector &scale)
-        : op(op)
-        , scale(scale)
-        , scaled_src(scale)
-      {}
-
-      void
-      vmult(TrilinosWrappers::MPI::BlockVector       &dst,
-            const TrilinosWrappers::MPI::BlockVector &src) const
-      {
-        scaled_src = src;
-        scaled_src.scale(scale);
-        op.vmult(dst, scaled_src);
-        dst.scale(scale);
-      }
-
-    private:
-      const Operator                            &op;
-      const TrilinosWrappers::MPI::BlockVector  &scale;
-      mutable TrilinosWrappers::MPI::BlockVector scaled_src;
-    };
   } // namespace
 } // namespace rbc_ifem
 
 namespace rbc_ifem
 {
-  namespace
-  {
-    /**
-     * -λ n on a membrane: the flux vector, pointing into the cell. DataOut
-     * gives normals to postprocessors only on faces (DataOutFaces), so they
-     * come from an FEValues at the patch points of each membrane cell.
-     */
-    class FluxVector : public DataPostprocessorVector<3>
-    {
-    public:
-      explicit FluxVector(const Mapping<2, 3> &mapping)
-        : DataPostprocessorVector<3>("co_flux_vector",
-                                     update_values | update_quadrature_points)
-        , mapping(mapping)
-      {}
-
-      void
-      evaluate_scalar_field(
-        const DataPostprocessorInputs::Scalar<3> &inputs,
-        std::vector<Vector<double>>              &computed) const override
-      {
-        const auto            cell = inputs.template get_cell<2>();
-        std::vector<Point<2>> unit_points(inputs.evaluation_points.size());
-        mapping.transform_points_real_to_unit_cell(cell,
-                                                   inputs.evaluation_points,
-                                                   unit_points);
-        FEValues<2, 3> fe_values(mapping,
-                                 fe,
-                                 Quadrature<2>(unit_points),
-                                 update_normal_vectors);
-        fe_values.reinit(cell);
-        for (unsigned int q = 0; q < unit_points.size(); ++q)
-          for (unsigned int d = 0; d < 3; ++d)
-            computed[q](d) =
-              -inputs.solution_values[q] * fe_values.normal_vector(q)[d];
-      }
-
-    private:
-      const Mapping<2, 3> &mapping;
-      const FE_Q<2, 3>     fe{1};
-    };
-  } // namespace
-
   CODiffusion::CODiffusion(
     const DiffusionParameters                 &parameters,
     const std::function<double(unsigned int)> &permeability,
@@ -225,7 +147,8 @@ namespace rbc_ifem
     const MPI_Comm                             communicator,
     TimerOutput                               &timer,
     const std::optional<double>               &period)
-    : parameters(parameters)
+    : DiffusionSolver(parameters.alveolar_pressure)
+    , parameters(parameters)
     , permeability(permeability)
     , pressure_boundary(pressure_boundary)
     , period(period)
@@ -645,11 +568,14 @@ namespace rbc_ifem
     solution = 0.;
     try
       {
-        solver.solve(DiagonallyScaled<SaddlePointOperator>(op, scale),
-                     solution,
-                     scaled_rhs,
-                     DiagonallyScaled<AugmentedLagrangianPreconditioner>(
-                       preconditioner, inverse_scale));
+        solver.solve(
+          DiagonallyScaled<SaddlePointOperator,
+                           TrilinosWrappers::MPI::BlockVector>(op, scale),
+          solution,
+          scaled_rhs,
+          DiagonallyScaled<AugmentedLagrangianPreconditioner,
+                           TrilinosWrappers::MPI::BlockVector>(preconditioner,
+                                                               inverse_scale));
       }
     catch (const SolverControl::NoConvergence &e)
       {
@@ -687,66 +613,14 @@ namespace rbc_ifem
       for (auto i = multiplier_offsets[m]; i < multiplier_offsets[m + 1]; ++i)
         flows[m] += multiplier_values[i] * multiplier_mass[i];
 
-    // The flow through the alveolar surface: Σ over its DoFs j of
-    // a(P, φ_j), which equals ∫ λ because a(P, 1) = 0.
+    // The flow through the alveolar surface equals ∫ λ because
+    // a(P, 1) = 0.
     IndexSet relevant_dofs;
     DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
     TrilinosWrappers::MPI::Vector P(owned_dofs, relevant_dofs, communicator);
-    P = solution.block(0);
-    const IndexSet boundary_dofs =
-      DoFTools::extract_boundary_dofs(dof_handler,
-                                      ComponentMask(),
-                                      {pressure_boundary});
-    const QGauss<3>                      quadrature(fe.degree + 1);
-    FEValues<3>                          fe_values(mapping,
-                          fe,
-                          quadrature,
-                          update_gradients | update_JxW_values);
-    std::vector<Tensor<1, 3>>            gradients(quadrature.size());
-    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
-    double                               local_flow = 0.;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          cell->get_dof_indices(dofs);
-          if (std::none_of(dofs.begin(), dofs.end(), [&](const auto dof) {
-                return boundary_dofs.is_element(dof);
-              }))
-            continue;
-          fe_values.reinit(cell);
-          fe_values.get_function_gradients(P, gradients);
-          const double alpha_D = permeability(cell->material_id());
-          for (unsigned int i = 0; i < dofs.size(); ++i)
-            if (boundary_dofs.is_element(dofs[i]))
-              for (const unsigned int q : fe_values.quadrature_point_indices())
-                local_flow += alpha_D * gradients[q] *
-                              fe_values.shape_grad(i, q) * fe_values.JxW(q);
-        }
-    alveolar_flow = Utilities::MPI::sum(local_flow, communicator);
-  }
-
-  const std::vector<double> &
-  CODiffusion::membrane_flows() const
-  {
-    return flows;
-  }
-
-  double
-  CODiffusion::total_flow() const
-  {
-    return std::accumulate(flows.begin(), flows.end(), 0.);
-  }
-
-  double
-  CODiffusion::dm_total() const
-  {
-    return total_flow() / parameters.alveolar_pressure;
-  }
-
-  double
-  CODiffusion::boundary_flow() const
-  {
-    return alveolar_flow;
+    P             = solution.block(0);
+    alveolar_flow = flow_through_boundary(
+      dof_handler, mapping, P, pressure_boundary, permeability, communicator);
   }
 
   types::global_dof_index
@@ -761,10 +635,10 @@ namespace rbc_ifem
     return multiplier_offsets.back();
   }
 
-  unsigned int
-  CODiffusion::n_iterations() const
+  types::global_dof_index
+  CODiffusion::n_dofs() const
   {
-    return iterations;
+    return n_pressure_dofs() + n_multiplier_dofs();
   }
 
   CODiffusion::OutputFiles
@@ -801,22 +675,15 @@ namespace rbc_ifem
         for (unsigned int i = 0; i < flux[m].size(); ++i)
           flux[m][i] = multiplier_values[multiplier_offsets[m] + i];
       }
-    const FluxVector flux_vector(*membrane_mapping);
-    files.membranes = write_membranes(
-      membranes,
-      *membrane_mapping,
-      directory,
-      name + "_membranes_" + Utilities::int_to_string(counter, 4),
-      communicator,
-      [&](const unsigned int m, DataOut<2, 3> &membrane_out) {
-        membrane_out.add_data_vector(*multiplier_dof_handlers[m],
-                                     flux[m],
-                                     "co_flux");
-        membrane_out.add_data_vector(*multiplier_dof_handlers[m],
-                                     flux[m],
-                                     flux_vector);
-      },
-      field_data);
+    files.membranes = write_flux_map(membranes,
+                                     *membrane_mapping,
+                                     multiplier_dof_handlers,
+                                     flux,
+                                     directory,
+                                     name + "_membranes_" +
+                                       Utilities::int_to_string(counter, 4),
+                                     communicator,
+                                     field_data);
     return files;
   }
 } // namespace rbc_ifem

@@ -9,6 +9,18 @@
 
 namespace rbc_ifem
 {
+  namespace
+  {
+    const SelectionNames<DiffusionMethod> &
+    method_names()
+    {
+      static const SelectionNames<DiffusionMethod> names{
+        {DiffusionMethod::lagrange_multiplier, "Lagrange multiplier"},
+        {DiffusionMethod::cut_cell, "cut cell"}};
+      return names;
+    }
+  } // namespace
+
   void
   DiffusionParameters::add_parameters(ParameterHandler &prm)
   {
@@ -54,6 +66,20 @@ namespace rbc_ifem
                  "alveolar gas",
                  "an ideal gas at 37 °C: (1/760) (273.15/310.15) = "
                  "1.159e-3");
+    add_selection(
+      prm,
+      "Method",
+      method,
+      method_names(),
+      "How P = 0 is imposed on the membranes, which cut through the "
+      "diffusion mesh. Lagrange multiplier (the paper's kind of method): a "
+      "multiplier on each membrane, the flux is its value; DM converges at "
+      "order ~1, the membranes must be about twice as coarse as the mesh "
+      "around them. cut cell: the plasma is the part of the mesh outside a "
+      "level set of the membranes (their signed distance), P = 0 is imposed "
+      "by Nitsche's method on the cut cells, stabilised by a ghost penalty; "
+      "DM converges at order >= 2 and the membranes may be as fine as "
+      "wanted. See doc/diffusion.md.");
     add_parameter(prm,
                   "Finite element degree",
                   degree,
@@ -69,9 +95,27 @@ namespace rbc_ifem
                   "easier and the P block harder. See doc/diffusion.md.",
                   Patterns::Double(0.));
     add_parameter(prm,
+                  "Nitsche penalty",
+                  nitsche_penalty,
+                  "cut cell only: the Nitsche penalty on the membranes is "
+                  "this times k(k+1) αD/h (k the degree, h the cell size); "
+                  "dimensionless. Too small (below about 1) loses "
+                  "coercivity; larger values only cost accuracy slowly.",
+                  Patterns::Double(0.));
+    add_parameter(prm,
+                  "Ghost penalty",
+                  ghost_penalty,
+                  "cut cell only: weight of the ghost penalty (the jumps of "
+                  "the normal derivatives of order 1 to k across the faces "
+                  "of cut cells, scaled by αD h^(2j-1)), dimensionless. It "
+                  "keeps the system well conditioned however small the "
+                  "plasma part of a cut cell is.",
+                  Patterns::Double(0.));
+    add_parameter(prm,
                   "Linear solver tolerance",
                   linear_tolerance,
-                  "FGMRES stops when the residual has fallen by this "
+                  "The linear solver (FGMRES for the multiplier, CG for cut "
+                  "cells) stops when the residual has fallen by this "
                   "factor from its first value in the solve. (Fluid/Linear "
                   "solver tolerance is relative to the largest residual of "
                   "the whole run instead.)",
@@ -79,8 +123,8 @@ namespace rbc_ifem
     add_parameter(prm,
                   "Max linear iterations",
                   max_linear_iterations,
-                  "FGMRES gives up (and the run stops) after this many "
-                  "iterations.",
+                  "The linear solver gives up (and the run stops) after this "
+                  "many iterations.",
                   Patterns::Integer(1));
     prm.leave_subsection();
   }
@@ -97,6 +141,8 @@ namespace rbc_ifem
       {"Diffusion/Gas diffusivity", gas_diffusivity},
       {"Diffusion/Gas solubility", gas_solubility},
       {"Diffusion/Augmentation", augmentation},
+      {"Diffusion/Nitsche penalty", nitsche_penalty},
+      {"Diffusion/Ghost penalty", ghost_penalty},
       {"Diffusion/Linear solver tolerance", linear_tolerance}};
     for (const auto &[name, value] : positive)
       require_positive(name, value, "");

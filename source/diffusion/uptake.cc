@@ -2,6 +2,7 @@
 #include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/output.h>
 #include <rbc_ifem/diffusion/co_diffusion.h>
+#include <rbc_ifem/diffusion/cut_cell_diffusion.h>
 #include <rbc_ifem/diffusion/uptake.h>
 #include <rbc_ifem/geometry/capillary_mesh.h>
 
@@ -45,7 +46,7 @@ namespace rbc_ifem
     /// membranes @p surfaces: everything before the assembly. A mesh too
     /// coarse for the membranes is an InputError naming @p band_refinements,
     /// the refinements of the mesh around them.
-    std::unique_ptr<CODiffusion>
+    std::unique_ptr<DiffusionSolver>
     set_up_diffusion(const parallel::shared::Triangulation<3>       &mesh,
                      const GeometryParameters                       &geometry,
                      const DiffusionParameters                      &d,
@@ -55,13 +56,26 @@ namespace rbc_ifem
                      const MPI_Comm     communicator,
                      TimerOutput       &timer)
     {
-      auto diffusion = std::make_unique<CODiffusion>(
-        d,
-        [&d](const unsigned int id) { return d.permeability(id); },
-        DiffusionBoundary::alveolar_surface,
-        communicator,
-        timer,
-        geometry.period());
+      const auto permeability = [&d](const unsigned int id) {
+        return d.permeability(id);
+      };
+      std::unique_ptr<DiffusionSolver> diffusion;
+      if (d.method == DiffusionMethod::cut_cell)
+        diffusion = std::make_unique<CutCellDiffusion>(
+          d,
+          permeability,
+          DiffusionBoundary::alveolar_surface,
+          communicator,
+          timer,
+          geometry.period());
+      else
+        diffusion =
+          std::make_unique<CODiffusion>(d,
+                                        permeability,
+                                        DiffusionBoundary::alveolar_surface,
+                                        communicator,
+                                        timer,
+                                        geometry.period());
       try
         {
           diffusion->setup(mesh, surfaces, mapping);
@@ -118,7 +132,7 @@ namespace rbc_ifem
       }
 
       parallel::shared::Triangulation<3> mesh;
-      std::unique_ptr<CODiffusion>       diffusion;
+      std::unique_ptr<DiffusionSolver>   diffusion;
     };
   } // namespace
 
@@ -151,7 +165,7 @@ namespace rbc_ifem
                const unsigned int                              band_refinements,
                const MPI_Comm                                  communicator,
                TimerOutput                                    &timer,
-               const std::function<void(const CODiffusion &)> &write_fields)
+               const std::function<void(const DiffusionSolver &)> &write_fields)
   {
     Timer                                     clock;
     const UptakeSetup                         setup(geometry,
@@ -163,7 +177,7 @@ namespace rbc_ifem
                             communicator,
                             timer);
     const parallel::shared::Triangulation<3> &mesh      = setup.mesh;
-    CODiffusion                              &diffusion = *setup.diffusion;
+    DiffusionSolver                          &diffusion = *setup.diffusion;
     diffusion.assemble();
     diffusion.solve();
     if (write_fields)
@@ -173,9 +187,9 @@ namespace rbc_ifem
     uptake.dm_total = diffusion.dm_total();
     for (const double flow : diffusion.membrane_flows())
       uptake.dm_cells.push_back(flow / d.alveolar_pressure);
-    uptake.n_nodes = mesh.n_used_vertices();
-    uptake.n_cells = mesh.n_active_cells();
-    uptake.n_dofs = diffusion.n_pressure_dofs() + diffusion.n_multiplier_dofs();
+    uptake.n_nodes    = mesh.n_used_vertices();
+    uptake.n_cells    = mesh.n_active_cells();
+    uptake.n_dofs     = diffusion.n_dofs();
     uptake.iterations = diffusion.n_iterations();
     uptake.seconds    = clock.wall_time();
     return uptake;
@@ -201,14 +215,14 @@ namespace rbc_ifem
   }
 
   void
-  UptakeFields::write(const CODiffusion &diffusion,
-                      const std::string &directory,
-                      const double       time,
-                      const unsigned int counter,
-                      const MPI_Comm     communicator,
-                      const FieldData   &field_data)
+  UptakeFields::write(const DiffusionSolver &diffusion,
+                      const std::string     &directory,
+                      const double           time,
+                      const unsigned int     counter,
+                      const MPI_Comm         communicator,
+                      const FieldData       &field_data)
   {
-    const CODiffusion::OutputFiles files =
+    const DiffusionSolver::OutputFiles files =
       diffusion.write_output(directory, "diffusion", counter, field_data);
     pressure.emplace_back(time, files.pressure);
     membranes.emplace_back(time, files.membranes);

@@ -19,7 +19,7 @@ namespace rbc_ifem
   DiffusionExperiment::execute()
   {
     const std::string &directory    = parameters.output_directory;
-    const auto         write_fields = [&](const CODiffusion &diffusion) {
+    const auto         write_fields = [&](const DiffusionSolver &diffusion) {
       create_output_directory(directory, communicator);
       UptakeFields().write(diffusion, directory, 0., 0, communicator);
     };

@@ -17,9 +17,9 @@ namespace rbc_ifem
 
   Uptake
   UptakeExperiment::solve(
-    const PlacedCells                              &cells,
-    const unsigned int                              band_refinements,
-    const std::function<void(const CODiffusion &)> &write_fields)
+    const PlacedCells                                  &cells,
+    const unsigned int                                  band_refinements,
+    const std::function<void(const DiffusionSolver &)> &write_fields)
   {
     return solve_uptake(parameters.geometry,
                         parameters.mesh,

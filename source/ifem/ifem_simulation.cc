@@ -469,7 +469,7 @@ namespace rbc_ifem
                              parameters.mesh.diffusion_band_refinements,
                              communicator,
                              timer,
-                             [&](const CODiffusion &diffusion) {
+                             [&](const DiffusionSolver &diffusion) {
                                record.uptake_fields.write(diffusion,
                                                           directory,
                                                           record.time,

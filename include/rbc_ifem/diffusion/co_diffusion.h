@@ -2,6 +2,7 @@
 #define rbc_ifem_diffusion_co_diffusion_h
 
 #include <rbc_ifem/base/field_data.h>
+#include <rbc_ifem/diffusion/diffusion_solver.h>
 #include <rbc_ifem/diffusion/parameters.h>
 
 #include <deal.II/base/index_set.h>
@@ -77,7 +78,7 @@ namespace rbc_ifem
    * The volume mesh is a parallel::shared::Triangulation: every rank knows
    * every cell, so every rank can locate every membrane point.
    */
-  class CODiffusion
+  class CODiffusion : public DiffusionSolver
   {
   public:
     /**
@@ -95,7 +96,7 @@ namespace rbc_ifem
                 const MPI_Comm                             communicator,
                 TimerOutput                               &timer,
                 const std::optional<double> &period = std::nullopt);
-    ~CODiffusion();
+    ~CODiffusion() override;
 
     /**
      * Distribute the DoFs of P on @p mesh and of λ on @p membranes, locate
@@ -105,66 +106,32 @@ namespace rbc_ifem
     void
     setup(const parallel::shared::Triangulation<3>       &mesh,
           const std::vector<const Triangulation<2, 3> *> &membranes,
-          const MappingQ<2, 3>                           &membrane_mapping);
+          const MappingQ<2, 3> &membrane_mapping) override;
 
-    /// Assemble the matrices and build the preconditioner.
     void
-    assemble();
+    assemble() override;
 
     /// Solve for P and λ; throws SolverFailure if FGMRES does not converge.
     void
-    solve();
-
-    /**
-     * CO flow into each membrane, ∫_Γi λ dA [µm³ s⁻¹, volume of CO at
-     * STPD]: αD is in µm²/(s Torr) and P in Torr.
-     */
-    const std::vector<double> &
-    membrane_flows() const;
-
-    /// Total CO flow into all membranes [µm³ s⁻¹].
-    double
-    total_flow() const;
-
-    /// DM = total flow / P_A [µm³ s⁻¹ Torr⁻¹].
-    double
-    dm_total() const;
-
-    /**
-     * CO flow out through the pressure boundary, computed independently of
-     * λ from the residual of the P equation on the boundary DoFs. It equals
-     * total_flow() to solver tolerance (conservation).
-     */
-    double
-    boundary_flow() const;
+    solve() override;
 
     types::global_dof_index
     n_pressure_dofs() const;
     types::global_dof_index
     n_multiplier_dofs() const;
-    unsigned int
-    n_iterations() const;
-
-    /// The files of one write_output().
-    struct OutputFiles
-    {
-      std::string pressure;  ///< NAME_CCCC.pvtu
-      std::string membranes; ///< NAME_membranes_CCCC.vtu
-    };
+    /// P and λ.
+    types::global_dof_index
+    n_dofs() const override;
 
     /**
-     * P as NAME_CCCC.pvtu (+ one piece per rank) and the membranes as
-     * NAME_membranes_CCCC.vtu with the flux density λ as a scalar "co_flux"
-     * and as the vector "co_flux_vector" = -λ n (pointing into the cell: the
-     * direction CO moves, the paper's Fig. 4f); CCCC is @p counter. The
-     * caller lists the files in its .pvd records. Every file carries
-     * @p field_data.
+     * The flux map is λ itself: "co_flux" = λ, "co_flux_vector" = -λ n (n
+     * out of the cell).
      */
     OutputFiles
     write_output(const std::string &directory,
                  const std::string &name,
                  const unsigned int counter    = 0,
-                 const FieldData   &field_data = {}) const;
+                 const FieldData   &field_data = {}) const override;
 
   private:
     struct CouplingData;
@@ -221,11 +188,8 @@ namespace rbc_ifem
     TrilinosWrappers::MPI::BlockVector solution;
     TrilinosWrappers::MPI::BlockVector rhs;
 
-    Vector<double>      multiplier_mass;   ///< ∫ μ_i dA, every i, every rank
-    Vector<double>      multiplier_values; ///< λ, all of it, on every rank
-    std::vector<double> flows;
-    double              alveolar_flow = 0.;
-    unsigned int        iterations    = 0;
+    Vector<double> multiplier_mass;   ///< ∫ μ_i dA, every i, every rank
+    Vector<double> multiplier_values; ///< λ, all of it, on every rank
   };
 } // namespace rbc_ifem
 

@@ -20,7 +20,7 @@ namespace rbc_ifem
 {
   using namespace dealii;
 
-  class CODiffusion;
+  class DiffusionSolver;
 
   /// What one CO uptake solve gives.
   struct Uptake
@@ -38,7 +38,8 @@ namespace rbc_ifem
    * The DM building block: the CO uptake of the membranes @p surfaces
    * (curved by @p mapping) in the capillary of @p geometry, on its diffusion
    * mesh (Mesh/Diffusion global refinements) refined @p band_refinements
-   * times within Mesh/Band width of their vertices, by CODiffusion; then
+   * times within Mesh/Band width of their vertices, by the solver of
+   * Diffusion/Method (DiffusionSolver); then
    * @p write_fields, if given, writes what the caller wants of the solve.
    * Throws SolverFailure if the solve fails.
    */
@@ -59,15 +60,15 @@ namespace rbc_ifem
 
   Uptake
   solve_uptake(
-    const GeometryParameters                       &geometry,
-    const MeshParameters                           &mesh,
-    const DiffusionParameters                      &diffusion,
-    const std::vector<const Triangulation<2, 3> *> &surfaces,
-    const MappingQ<2, 3>                           &mapping,
-    const unsigned int                              band_refinements,
-    const MPI_Comm                                  communicator,
-    TimerOutput                                    &timer,
-    const std::function<void(const CODiffusion &)> &write_fields = {});
+    const GeometryParameters                           &geometry,
+    const MeshParameters                               &mesh,
+    const DiffusionParameters                          &diffusion,
+    const std::vector<const Triangulation<2, 3> *>     &surfaces,
+    const MappingQ<2, 3>                               &mapping,
+    const unsigned int                                  band_refinements,
+    const MPI_Comm                                      communicator,
+    TimerOutput                                        &timer,
+    const std::function<void(const DiffusionSolver &)> &write_fields = {});
 
   /// The header of dm.csv for @p n_cells cells: time,dm_total,dm_cell_0,...
   std::string
@@ -91,12 +92,12 @@ namespace rbc_ifem
      * and rewrite the two .pvd records.
      */
     void
-    write(const CODiffusion &diffusion,
-          const std::string &directory,
-          const double       time,
-          const unsigned int counter,
-          const MPI_Comm     communicator,
-          const FieldData   &field_data = {});
+    write(const DiffusionSolver &diffusion,
+          const std::string     &directory,
+          const double           time,
+          const unsigned int     counter,
+          const MPI_Comm         communicator,
+          const FieldData       &field_data = {});
 
     template <class Archive>
     void

@@ -12,7 +12,7 @@ namespace rbc_ifem
 {
   /**
    * What the CO uptake experiments (diffusion, layouts, mesh convergence)
-   * share: each is a steady diffusion solve (CODiffusion, through
+   * share: each is a steady diffusion solve (DiffusionSolver, through
    * solve_uptake()) per layout on the capillary's diffusion mesh, refined in
    * a band around the membranes, and a progress line per solve.
    */
@@ -32,9 +32,10 @@ namespace rbc_ifem
      * solve_uptake().
      */
     Uptake
-    solve(const PlacedCells                              &cells,
-          const unsigned int                              band_refinements,
-          const std::function<void(const CODiffusion &)> &write_fields = {});
+    solve(
+      const PlacedCells                                  &cells,
+      const unsigned int                                  band_refinements,
+      const std::function<void(const DiffusionSolver &)> &write_fields = {});
 
     /// The progress line of one solve.
     void

@@ -1,0 +1,184 @@
+#ifndef rbc_ifem_diffusion_cut_cell_diffusion_h
+#define rbc_ifem_diffusion_cut_cell_diffusion_h
+
+#include <rbc_ifem/diffusion/diffusion_solver.h>
+#include <rbc_ifem/diffusion/membrane_distance.h>
+#include <rbc_ifem/diffusion/parameters.h>
+
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/hp/fe_collection.h>
+#include <deal.II/hp/mapping_collection.h>
+#include <deal.II/hp/q_collection.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/non_matching/mesh_classifier.h>
+
+#include <map>
+#include <optional>
+
+namespace rbc_ifem
+{
+  /**
+   * Steady CO uptake on cut cells (Diffusion/Method = cut cell): the plasma
+   * is the part of the diffusion mesh outside every red cell, described by a
+   * level set, and P = 0 holds on its boundary, the membranes, by Nitsche's
+   * method, as in deal.II's step-85:
+   *
+   *   find P in Q_k on the cells that reach into the plasma such that
+   *   (αD ∇P, ∇q)_Ωh − (αD ∂ₙP, q)_Γh − (αD ∂ₙq, P)_Γh
+   *     + (γ_N k(k+1) αD/h P, q)_Γh + g(P, q) = 0   for all q,
+   *
+   * with n the normal out of the plasma on the discrete membranes Γh and the
+   * ghost penalty g(P, q) = Σ_F Σ_{j=1..k} γ_g αD h^(2j−1) ([∂ₙʲP], [∂ₙʲq])_F
+   * on the faces F of cut cells, which bounds the condition number however
+   * the membranes cut the cells.
+   *
+   * The level set φ is the Q_k interpolant of minus the signed distance to
+   * the membranes (MembraneDistance), so Γh = {φ = 0} is within O(h^(k+1))
+   * of them, and the quadratures on the cut cells come from deal.II's
+   * NonMatching::FEValues (Saye's algorithm). P has no kink inside any cell
+   * (the cell interiors are not part of the problem), so DM converges at the
+   * order of the geometry and the symmetric, adjoint-consistent Nitsche
+   * flux: about k + 1.
+   *
+   * The CO flux into a membrane is the consistent Nitsche flux
+   * j = −αD ∂ₙP + γ_N k(k+1) αD/h P on Γh. Its integral over the whole Γh
+   * equals the flow through the alveolar surface exactly (test with q = 1);
+   * each surface quadrature point gives its share to the membrane closest to
+   * it, and the flux map on a membrane is the lumped L² projection of j onto
+   * FE_Q<2,3>(1) there.
+   *
+   * The system is symmetric positive definite: CG with one AMG V-cycle,
+   * symmetrically Jacobi-scaled (DiagonallyScaled).
+   */
+  class CutCellDiffusion : public DiffusionSolver
+  {
+  public:
+    /// The arguments of CODiffusion's constructor.
+    CutCellDiffusion(const DiffusionParameters                 &parameters,
+                     const std::function<double(unsigned int)> &permeability,
+                     const types::boundary_id     pressure_boundary,
+                     const MPI_Comm               communicator,
+                     TimerOutput                 &timer,
+                     const std::optional<double> &period = std::nullopt);
+    ~CutCellDiffusion() override;
+
+    /**
+     * Build the level set of the membranes, classify the cells, distribute
+     * the DoFs on the cells that reach into the plasma, find each surface
+     * quadrature point's membrane. Throws InputError if a membrane leaves
+     * the lumen or two membranes come closer than one mesh cell.
+     */
+    void
+    setup(const parallel::shared::Triangulation<3>       &mesh,
+          const std::vector<const Triangulation<2, 3> *> &membranes,
+          const MappingQ<2, 3> &membrane_mapping) override;
+
+    void
+    assemble() override;
+
+    /// Solve for P; throws SolverFailure if CG does not converge.
+    void
+    solve() override;
+
+    types::global_dof_index
+    n_dofs() const override;
+
+    /// Cells of the diffusion mesh the membranes cut.
+    unsigned int
+    n_cut_cells() const;
+
+    /**
+     * P on the cells that reach into the plasma, with the signed distance
+     * to the membranes as "membrane_distance" [µm] (> 0 in the plasma) and
+     * the material id; the membranes with the flux map j.
+     */
+    OutputFiles
+    write_output(const std::string &directory,
+                 const std::string &name,
+                 const unsigned int counter    = 0,
+                 const FieldData   &field_data = {}) const override;
+
+  private:
+    /// Which membrane each surface quadrature point of a cut cell is on.
+    using SurfacePoints = std::vector<MembraneDistance::ClosestPoint>;
+
+    void
+    compute_level_set();
+    void
+    distribute_dofs();
+    void
+    setup_constraints();
+    void
+    locate_surface_points();
+    void
+    setup_matrix();
+    void
+    assemble_cells();
+    void
+    assemble_ghost_penalty();
+    void
+    compute_flows();
+
+    /// The ghost penalty acts on @p face of @p cell: both sides carry DoFs
+    /// and at least one is cut.
+    bool
+    face_has_ghost_penalty(const DoFHandler<3>::active_cell_iterator &cell,
+                           const unsigned int face) const;
+
+    /**
+     * Call @p f(cell, face) once for every face with a ghost penalty that
+     * this rank assembles: from the finer side where the levels differ,
+     * from the side with the smaller CellId where they do not.
+     */
+    template <typename Function>
+    void
+    for_each_ghost_penalty_face(const Function &f) const;
+
+    /// γ_N k(k+1) αD / h on @p cell.
+    double
+    nitsche_weight(const DoFHandler<3>::active_cell_iterator &cell) const;
+
+    const DiffusionParameters                 parameters;
+    const std::function<double(unsigned int)> permeability;
+    const types::boundary_id                  pressure_boundary;
+    const std::optional<double>               period;
+    const MPI_Comm                            communicator;
+    TimerOutput                              &timer;
+
+    const parallel::shared::Triangulation<3> *mesh = nullptr;
+    std::vector<const Triangulation<2, 3> *>  membranes;
+    const MappingQ<2, 3>                     *membrane_mapping = nullptr;
+    std::unique_ptr<MembraneDistance>         distance;
+
+    const MappingQ<3>              mapping;
+    const hp::MappingCollection<3> mapping_collection;
+    /// On uncut cells, and the 1-D rule of the cut cells' quadratures.
+    const hp::QCollection<3> cell_quadrature;
+    const hp::QCollection<1> line_quadrature;
+    const FE_Q<3>            level_set_fe;
+    DoFHandler<3>            level_set_dof_handler;
+    /// φ = −(signed distance): < 0 in the plasma (deal.II's "inside").
+    Vector<double>                                  level_set;
+    std::unique_ptr<NonMatching::MeshClassifier<3>> classifier;
+
+    hp::FECollection<3>       fe_collection; ///< FE_Q(k), FE_Nothing
+    DoFHandler<3>             dof_handler;
+    IndexSet                  owned_dofs, relevant_dofs;
+    AffineConstraints<double> constraints;
+    std::map<unsigned int, SurfacePoints> surface_points; ///< by cell index
+
+    TrilinosWrappers::SparseMatrix    matrix;
+    TrilinosWrappers::MPI::Vector     rhs, solution;
+    TrilinosWrappers::PreconditionAMG amg;
+
+    /// The flux map, FE_Q<2,3>(1) on each membrane.
+    std::vector<std::unique_ptr<DoFHandler<2, 3>>> flux_dof_handlers;
+    std::vector<Vector<double>>                    flux_map;
+  };
+} // namespace rbc_ifem
+
+#endif

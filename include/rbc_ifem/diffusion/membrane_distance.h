@@ -1,0 +1,106 @@
+#ifndef rbc_ifem_diffusion_membrane_distance_h
+#define rbc_ifem_diffusion_membrane_distance_h
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/polynomial.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/numerics/rtree.h>
+
+#include <memory>
+#include <optional>
+#include <utility>
+#include <vector>
+
+namespace rbc_ifem
+{
+  using namespace dealii;
+
+  /**
+   * The signed distance from a point to a set of closed membranes, and the
+   * closest point on them: what the cut-cell uptake solve needs to build a
+   * level set of the plasma around the cells (CutCellDiffusion) and to hand
+   * the flux it computes back to the membranes.
+   *
+   * Each membrane cell is curved by @p mapping, a MappingQ of degree p: its
+   * map is the tensor-product Lagrange interpolant at the (p+1)² Gauss-Lobatto
+   * points, which this class samples once and then evaluates itself. The
+   * closest point is found by Gauss-Newton in the reference coordinates of
+   * the cells of the nearest sampled points (an R-tree of all samples), so
+   * a query costs a few small 2×2 solves, not a search of the surface.
+   *
+   * The distance is positive outside every cell and negative inside one; the
+   * outward side of each membrane is found from the sign of its enclosed
+   * volume, so either orientation of the membrane mesh works.
+   */
+  class MembraneDistance
+  {
+  public:
+    /// What a query returns.
+    struct ClosestPoint
+    {
+      double       signed_distance = 0.; ///< [µm], < 0 inside a cell
+      unsigned int membrane        = 0;  ///< index into the membranes
+      /// The membrane cell that holds the closest point.
+      typename Triangulation<2, 3>::active_cell_iterator cell;
+      Point<2>                                           reference;
+      Point<3>                                           point;
+      Tensor<1, 3> normal; ///< unit outward normal there
+    };
+
+    /**
+     * Sample @p membranes, curved by @p mapping (a MappingQ). With a
+     * @p period along x the segment is periodic: the distance is to the
+     * nearest periodic image of each membrane.
+     */
+    MembraneDistance(const std::vector<const Triangulation<2, 3> *> &membranes,
+                     const MappingQ<2, 3>                           &mapping,
+                     const std::optional<double> &period = std::nullopt);
+
+    MembraneDistance(const MembraneDistance &) = delete;
+    MembraneDistance &
+    operator=(const MembraneDistance &) = delete;
+
+    /// The closest membrane point to @p x and its signed distance.
+    ClosestPoint
+    closest_point(const Point<3> &x) const;
+
+  private:
+    /// One membrane cell as a polynomial patch of degree p.
+    struct Patch
+    {
+      unsigned int                                       membrane;
+      typename Triangulation<2, 3>::active_cell_iterator cell;
+      std::vector<Point<3>> nodes; ///< lexicographic, (p+1)²
+      double orientation;          ///< +1 or -1: ∂₀F × ∂₁F outward?
+    };
+
+    /// F(ξ) and its two tangents on @p patch.
+    void
+    evaluate(const Patch    &patch,
+             const Point<2> &xi,
+             Point<3>       &F,
+             Tensor<1, 3>   &dF0,
+             Tensor<1, 3>   &dF1) const;
+
+    /// The closest point to @p x on @p patch, from the start @p xi.
+    ClosestPoint
+    project(const Patch &patch, const Point<3> &x, Point<2> xi) const;
+
+    std::vector<Polynomials::Polynomial<double>>
+                        basis; ///< 1-D Lagrange, degree p
+    std::vector<double> nodes_1d;
+    std::vector<Patch>  patches;
+    /// Sample k: patch sample_patch[k] at reference point sample_xi[k].
+    std::vector<Point<3>>     samples;
+    std::vector<unsigned int> sample_patch;
+    std::vector<Point<2>>     sample_xi;
+    /// Indices into samples (which it refers to: the class cannot move).
+    using Tree = decltype(pack_rtree_of_indices(samples));
+    std::unique_ptr<Tree> tree;
+    std::optional<double> period;
+  };
+} // namespace rbc_ifem
+
+#endif

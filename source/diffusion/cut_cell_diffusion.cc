@@ -1,0 +1,682 @@
+#include <rbc_ifem/base/input_error.h>
+#include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/solver_failure.h>
+#include <rbc_ifem/diffusion/cut_cell_diffusion.h>
+#include <rbc_ifem/diffusion/diagonally_scaled.h>
+#include <rbc_ifem/geometry/capillary_mesh.h>
+
+#include <deal.II/base/function.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_interface_values.h>
+#include <deal.II/fe/fe_nothing.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/hp/mapping_collection.h>
+#include <deal.II/hp/q_collection.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+#include <deal.II/non_matching/fe_values.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace rbc_ifem
+{
+  namespace
+  {
+    /// The two elements of the hp collection.
+    enum ActiveFE : unsigned int
+    {
+      lagrange = 0, ///< cells that reach into the plasma
+      nothing  = 1  ///< cells wholly inside a red cell
+    };
+
+    bool
+    is_cut(const NonMatching::MeshClassifier<3>           &classifier,
+           const typename Triangulation<3>::cell_iterator &cell)
+    {
+      return classifier.location_to_level_set(cell) ==
+             NonMatching::LocationToLevelSet::intersected;
+    }
+  } // namespace
+
+  CutCellDiffusion::CutCellDiffusion(
+    const DiffusionParameters                 &parameters,
+    const std::function<double(unsigned int)> &permeability,
+    const types::boundary_id                   pressure_boundary,
+    const MPI_Comm                             communicator,
+    TimerOutput                               &timer,
+    const std::optional<double>               &period)
+    : DiffusionSolver(parameters.alveolar_pressure)
+    , parameters(parameters)
+    , permeability(permeability)
+    , pressure_boundary(pressure_boundary)
+    , period(period)
+    , communicator(communicator)
+    , timer(timer)
+    , mapping(parameters.degree)
+    , mapping_collection(mapping)
+    , cell_quadrature(QGauss<3>(parameters.degree + 1))
+    , line_quadrature(QGauss<1>(parameters.degree + 1))
+    , level_set_fe(parameters.degree)
+  {
+    fe_collection.push_back(FE_Q<3>(parameters.degree));
+    fe_collection.push_back(FE_Nothing<3>());
+  }
+
+  CutCellDiffusion::~CutCellDiffusion()
+  {
+    // The DoFHandlers refer to the mesh and the classifier to the level set
+    // DoFHandler: release them first.
+    classifier.reset();
+    dof_handler.clear();
+    level_set_dof_handler.clear();
+  }
+
+  void
+  CutCellDiffusion::setup(
+    const parallel::shared::Triangulation<3>       &mesh,
+    const std::vector<const Triangulation<2, 3> *> &membranes,
+    const MappingQ<2, 3>                           &membrane_mapping)
+  {
+    TimerOutput::Scope scope(timer, "diffusion: setup");
+    this->mesh             = &mesh;
+    this->membranes        = membranes;
+    this->membrane_mapping = &membrane_mapping;
+    distance =
+      std::make_unique<MembraneDistance>(membranes, membrane_mapping, period);
+    compute_level_set();
+    distribute_dofs();
+    setup_constraints();
+    locate_surface_points();
+    setup_matrix();
+  }
+
+  void
+  CutCellDiffusion::compute_level_set()
+  {
+    TimerOutput::Scope scope(timer, "diffusion: level set");
+    level_set_dof_handler.reinit(*mesh);
+    level_set_dof_handler.distribute_dofs(level_set_fe);
+    // Every rank classifies every cell (a shared mesh has no artificial
+    // cells) but needs the level set right only on the cells it owns and
+    // their neighbours: elsewhere it stays "inside a red cell".
+    level_set.reinit(level_set_dof_handler.n_dofs());
+    level_set = 1.;
+    std::vector<bool> done(level_set_dof_handler.n_dofs(), false);
+    FEValues<3>       fe_values(mapping,
+                          level_set_fe,
+                          Quadrature<3>(level_set_fe.get_unit_support_points()),
+                          update_quadrature_points);
+    std::vector<types::global_dof_index> dofs(level_set_fe.n_dofs_per_cell());
+    for (const auto &cell : level_set_dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned() || cell->is_ghost())
+        {
+          fe_values.reinit(cell);
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            if (!done[dofs[i]])
+              {
+                level_set[dofs[i]] =
+                  -distance->closest_point(fe_values.quadrature_point(i))
+                     .signed_distance;
+                done[dofs[i]] = true;
+              }
+        }
+    // Hanging values take the coarse side's, so that neighbours agree on
+    // where the membrane is.
+    AffineConstraints<double> hanging;
+    DoFTools::make_hanging_node_constraints(level_set_dof_handler, hanging);
+    hanging.close();
+    hanging.distribute(level_set);
+
+    classifier =
+      std::make_unique<NonMatching::MeshClassifier<3>>(level_set_dof_handler,
+                                                       level_set);
+    classifier->reclassify();
+  }
+
+  void
+  CutCellDiffusion::distribute_dofs()
+  {
+    dof_handler.reinit(*mesh);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        cell->set_active_fe_index(classifier->location_to_level_set(cell) ==
+                                      NonMatching::LocationToLevelSet::outside ?
+                                    ActiveFE::nothing :
+                                    ActiveFE::lagrange);
+    dof_handler.distribute_dofs(fe_collection);
+    owned_dofs = dof_handler.locally_owned_dofs();
+    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
+  }
+
+  void
+  CutCellDiffusion::setup_constraints()
+  {
+    constraints.clear();
+    constraints.reinit(relevant_dofs);
+    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+    VectorTools::interpolate_boundary_values(mapping_collection,
+                                             dof_handler,
+                                             pressure_boundary,
+                                             Functions::ConstantFunction<3>(
+                                               parameters.alveolar_pressure),
+                                             constraints);
+    if (period)
+      {
+        std::vector<GridTools::PeriodicFacePair<DoFHandler<3>::cell_iterator>>
+          ends;
+        GridTools::collect_periodic_faces(dof_handler,
+                                          DiffusionBoundary::inlet_end,
+                                          DiffusionBoundary::outlet_end,
+                                          /*direction=*/0,
+                                          ends);
+        DoFTools::make_periodicity_constraints<3, 3>(ends, constraints);
+      }
+    constraints.close();
+  }
+
+  void
+  CutCellDiffusion::locate_surface_points()
+  {
+    TimerOutput::Scope             scope(timer, "diffusion: surface points");
+    NonMatching::RegionUpdateFlags flags;
+    flags.surface = update_quadrature_points;
+    NonMatching::FEValues<3> fe_values(mapping_collection,
+                                       fe_collection,
+                                       cell_quadrature,
+                                       line_quadrature,
+                                       flags,
+                                       *classifier,
+                                       level_set_dof_handler,
+                                       level_set);
+    // What the membranes ask of the mesh, found on this rank's cut cells:
+    // [0] a cut cell outside the plasma (a membrane in the vessel wall),
+    // [1] a cut cell that two membranes share (closer than a cell), and
+    // [2 + m] the number of surface points on membrane m.
+    std::vector<unsigned int>             findings(2 + membranes.size(), 0);
+    std::pair<unsigned int, unsigned int> shared_by{0, 0};
+    surface_points.clear();
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned() && is_cut(*classifier, cell))
+        {
+          fe_values.reinit(cell);
+          const auto &surface = fe_values.get_surface_fe_values();
+          if (!surface)
+            continue;
+          if (cell->material_id() != Material::plasma)
+            findings[0] = 1;
+          SurfacePoints &points = surface_points[cell->active_cell_index()];
+          for (const auto &x : surface->get_quadrature_points())
+            {
+              points.push_back(distance->closest_point(x));
+              ++findings[2 + points.back().membrane];
+              if (points.back().membrane != points.front().membrane)
+                {
+                  findings[1] = 1;
+                  shared_by = {points.front().membrane, points.back().membrane};
+                }
+            }
+        }
+    Utilities::MPI::max(findings, communicator, findings);
+    if (findings[0] > 0)
+      throw InputError("Layout",
+                       "a membrane in the vessel wall",
+                       "a membrane reaches out of the lumen into the vessel "
+                       "wall; every cell must lie inside the capillary.");
+    if (findings[1] > 0)
+      {
+        const unsigned int first =
+          Utilities::MPI::max(shared_by.first, communicator);
+        const unsigned int second =
+          Utilities::MPI::max(shared_by.second, communicator);
+        throw InputError(
+          "Layout",
+          "cells " + std::to_string(std::min(first, second)) + " and " +
+            std::to_string(std::max(first, second)),
+          "these two membranes pass through one cell of the diffusion mesh "
+          "(they are closer than the mesh resolves): raise Mesh/Diffusion "
+          "band refinements, or move the cells apart.");
+      }
+    for (unsigned int m = 0; m < membranes.size(); ++m)
+      if (findings[2 + m] == 0)
+        throw InputError("Layout",
+                         "cell " + std::to_string(m),
+                         "this membrane cuts no cell of the diffusion mesh: "
+                         "it lies outside the capillary, or within one "
+                         "cell of the mesh.");
+  }
+
+  bool
+  CutCellDiffusion::face_has_ghost_penalty(
+    const DoFHandler<3>::active_cell_iterator &cell,
+    const unsigned int                         face) const
+  {
+    if (cell->at_boundary(face) || cell->active_fe_index() != lagrange)
+      return false;
+    const auto neighbor = cell->neighbor(face);
+    if (neighbor->has_children() || neighbor->active_fe_index() != lagrange)
+      return false;
+    return is_cut(*classifier, cell) || is_cut(*classifier, neighbor);
+  }
+
+  template <typename Function>
+  void
+  CutCellDiffusion::for_each_ghost_penalty_face(const Function &f) const
+  {
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int face : cell->face_indices())
+          if (face_has_ghost_penalty(cell, face) &&
+              (cell->neighbor_is_coarser(face) ||
+               cell->id() < cell->neighbor(face)->id()))
+            f(cell, face);
+  }
+
+  void
+  CutCellDiffusion::setup_matrix()
+  {
+    TrilinosWrappers::SparsityPattern pattern(owned_dofs,
+                                              owned_dofs,
+                                              relevant_dofs,
+                                              communicator);
+    DoFTools::make_sparsity_pattern(dof_handler,
+                                    pattern,
+                                    constraints,
+                                    false,
+                                    Utilities::MPI::this_mpi_process(
+                                      communicator));
+    // The ghost penalty couples the DoFs of the two cells of its faces.
+    std::vector<types::global_dof_index> dofs, neighbor_dofs;
+    for_each_ghost_penalty_face([&](const auto &cell, const unsigned int face) {
+      dofs.resize(cell->get_fe().n_dofs_per_cell());
+      cell->get_dof_indices(dofs);
+      neighbor_dofs.resize(dofs.size());
+      cell->neighbor(face)->get_dof_indices(neighbor_dofs);
+      dofs.insert(dofs.end(), neighbor_dofs.begin(), neighbor_dofs.end());
+      constraints.add_entries_local_to_global(dofs, pattern, false);
+    });
+    pattern.compress();
+    matrix.reinit(pattern);
+    rhs.reinit(owned_dofs, communicator);
+    solution.reinit(owned_dofs, relevant_dofs, communicator);
+  }
+
+  double
+  CutCellDiffusion::nitsche_weight(
+    const DoFHandler<3>::active_cell_iterator &cell) const
+  {
+    const unsigned int k = parameters.degree;
+    return parameters.nitsche_penalty * k * (k + 1) *
+           permeability(cell->material_id()) / cell->minimum_vertex_distance();
+  }
+
+  void
+  CutCellDiffusion::assemble()
+  {
+    TimerOutput::Scope scope(timer, "diffusion: assemble");
+    matrix = 0.;
+    rhs    = 0.;
+    assemble_cells();
+    assemble_ghost_penalty();
+    matrix.compress(VectorOperation::add);
+    rhs.compress(VectorOperation::add);
+
+    TimerOutput::Scope amg_scope(timer, "diffusion: AMG setup");
+    TrilinosWrappers::PreconditionAMG::AdditionalData amg_data;
+    amg_data.elliptic              = true;
+    amg_data.higher_order_elements = parameters.degree > 1;
+    amg_data.smoother_sweeps       = 2;
+    amg_data.aggregation_threshold = 0.02;
+    amg.initialize(matrix, amg_data);
+  }
+
+  void
+  CutCellDiffusion::assemble_cells()
+  {
+    NonMatching::RegionUpdateFlags flags;
+    flags.inside  = update_gradients | update_JxW_values;
+    flags.surface = update_values | update_gradients | update_JxW_values |
+                    update_normal_vectors;
+    NonMatching::FEValues<3> fe_values(mapping_collection,
+                                       fe_collection,
+                                       cell_quadrature,
+                                       line_quadrature,
+                                       flags,
+                                       *classifier,
+                                       level_set_dof_handler,
+                                       level_set);
+    const unsigned int       n = fe_collection[lagrange].n_dofs_per_cell();
+    FullMatrix<double>       cell_matrix(n, n);
+    Vector<double>           cell_rhs(n);
+    std::vector<types::global_dof_index> dofs(n);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned() && cell->active_fe_index() == lagrange)
+        {
+          fe_values.reinit(cell);
+          const double alpha_D = permeability(cell->material_id());
+          cell_matrix          = 0.;
+          if (const auto &inside = fe_values.get_inside_fe_values())
+            for (const unsigned int q : inside->quadrature_point_indices())
+              for (unsigned int i = 0; i < n; ++i)
+                for (unsigned int j = 0; j < n; ++j)
+                  cell_matrix(i, j) += alpha_D * inside->shape_grad(i, q) *
+                                       inside->shape_grad(j, q) *
+                                       inside->JxW(q);
+          if (const auto &surface = fe_values.get_surface_fe_values())
+            {
+              // P = 0 on the membrane: the symmetric Nitsche terms.
+              const double penalty = nitsche_weight(cell);
+              for (const unsigned int q : surface->quadrature_point_indices())
+                {
+                  const Tensor<1, 3> &normal = surface->normal_vector(q);
+                  for (unsigned int i = 0; i < n; ++i)
+                    {
+                      const double flux_i =
+                        alpha_D * (normal * surface->shape_grad(i, q));
+                      const double v_i = surface->shape_value(i, q);
+                      for (unsigned int j = 0; j < n; ++j)
+                        cell_matrix(i, j) +=
+                          (-flux_i * surface->shape_value(j, q) -
+                           alpha_D * (normal * surface->shape_grad(j, q)) *
+                             v_i +
+                           penalty * v_i * surface->shape_value(j, q)) *
+                          surface->JxW(q);
+                    }
+                }
+            }
+          cell->get_dof_indices(dofs);
+          cell_rhs = 0.;
+          constraints.distribute_local_to_global(
+            cell_matrix, cell_rhs, dofs, matrix, rhs);
+        }
+  }
+
+  void
+  CutCellDiffusion::assemble_ghost_penalty()
+  {
+    const unsigned int                   k = parameters.degree;
+    const QGauss<2>                      quadrature(k + 1);
+    FEInterfaceValues<3>                 interface_values(mapping,
+                                          fe_collection[lagrange],
+                                          quadrature,
+                                          update_gradients | update_hessians |
+                                            update_JxW_values |
+                                            update_normal_vectors);
+    FullMatrix<double>                   local;
+    Vector<double>                       local_rhs;
+    std::vector<types::global_dof_index> dofs;
+    for_each_ghost_penalty_face([&](const auto &cell, const unsigned int face) {
+      const auto neighbor = cell->neighbor(face);
+      if (cell->neighbor_is_coarser(face))
+        {
+          const auto [neighbor_face, neighbor_subface] =
+            cell->neighbor_of_coarser_neighbor(face);
+          interface_values.reinit(cell,
+                                  face,
+                                  numbers::invalid_unsigned_int,
+                                  neighbor,
+                                  neighbor_face,
+                                  neighbor_subface);
+        }
+      else
+        interface_values.reinit(cell,
+                                face,
+                                numbers::invalid_unsigned_int,
+                                neighbor,
+                                cell->neighbor_of_neighbor(face),
+                                numbers::invalid_unsigned_int);
+      // γ_g αD h^(2j-1) ([∂ₙʲP], [∂ₙʲq]) for j = 1 .. k (k <= 2 here: the
+      // third derivatives of Q3 are not penalised).
+      const double h = cell->minimum_vertex_distance();
+      const double weight =
+        parameters.ghost_penalty * permeability(cell->material_id());
+      const unsigned int n = interface_values.n_current_interface_dofs();
+      local.reinit(n, n);
+      for (const unsigned int q : interface_values.quadrature_point_indices())
+        {
+          const Tensor<1, 3> &normal = interface_values.normal(q);
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              const double d1_i =
+                normal * interface_values.jump_in_shape_gradients(i, q);
+              const double d2_i =
+                k > 1 ?
+                  normal *
+                    (interface_values.jump_in_shape_hessians(i, q) * normal) :
+                  0.;
+              for (unsigned int j = 0; j < n; ++j)
+                {
+                  const double d1_j =
+                    normal * interface_values.jump_in_shape_gradients(j, q);
+                  const double d2_j =
+                    k > 1 ?
+                      normal * (interface_values.jump_in_shape_hessians(j, q) *
+                                normal) :
+                      0.;
+                  local(i, j) += weight *
+                                 (h * d1_i * d1_j + h * h * h * d2_i * d2_j) *
+                                 interface_values.JxW(q);
+                }
+            }
+        }
+      dofs = interface_values.get_interface_dof_indices();
+      local_rhs.reinit(n);
+      constraints.distribute_local_to_global(
+        local, local_rhs, dofs, matrix, rhs);
+    });
+  }
+
+  void
+  CutCellDiffusion::solve()
+  {
+    TimerOutput::Scope scope(timer, "diffusion: solve");
+    // D = diag(A)^-1/2: every row O(1) on the diagonal.
+    TrilinosWrappers::MPI::Vector scale(rhs), inverse_scale(rhs);
+    for (const auto i : owned_dofs)
+      {
+        scale[i]         = 1. / std::sqrt(matrix.diag_element(i));
+        inverse_scale[i] = 1. / scale[i];
+      }
+    scale.compress(VectorOperation::insert);
+    inverse_scale.compress(VectorOperation::insert);
+
+    TrilinosWrappers::MPI::Vector scaled_rhs(rhs), x(rhs);
+    scaled_rhs.scale(scale);
+    x = 0.;
+    SolverControl control(parameters.max_linear_iterations,
+                          parameters.linear_tolerance * scaled_rhs.l2_norm());
+    SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+    try
+      {
+        cg.solve(
+          DiagonallyScaled<TrilinosWrappers::SparseMatrix,
+                           TrilinosWrappers::MPI::Vector>(matrix, scale),
+          x,
+          scaled_rhs,
+          DiagonallyScaled<TrilinosWrappers::PreconditionAMG,
+                           TrilinosWrappers::MPI::Vector>(amg, inverse_scale));
+      }
+    catch (const SolverControl::NoConvergence &e)
+      {
+        throw SolverFailure(
+          "CO diffusion (cut cells): CG did not converge in " +
+          std::to_string(e.last_step) + " iterations (residual " +
+          Utilities::to_string(e.last_residual) + ", wanted " +
+          Utilities::to_string(control.tolerance()) +
+          "). Raise Diffusion/Max linear iterations, or Diffusion/Ghost "
+          "penalty.");
+      }
+    x.scale(scale);
+    iterations = control.last_step();
+    if (!std::isfinite(x.l2_norm()))
+      throw SolverFailure("CO diffusion: the solution is not finite.");
+    constraints.distribute(x);
+    solution = x;
+    compute_flows();
+  }
+
+  void
+  CutCellDiffusion::compute_flows()
+  {
+    NonMatching::RegionUpdateFlags flags;
+    flags.surface = update_values | update_gradients | update_JxW_values |
+                    update_normal_vectors;
+    NonMatching::FEValues<3> fe_values(mapping_collection,
+                                       fe_collection,
+                                       cell_quadrature,
+                                       line_quadrature,
+                                       flags,
+                                       *classifier,
+                                       level_set_dof_handler,
+                                       level_set);
+    const FE_Q<2, 3>         flux_fe(1);
+    flux_dof_handlers.clear();
+    std::vector<Vector<double>> projected(membranes.size());
+    for (unsigned int m = 0; m < membranes.size(); ++m)
+      {
+        flux_dof_handlers.push_back(
+          std::make_unique<DoFHandler<2, 3>>(*membranes[m]));
+        flux_dof_handlers.back()->distribute_dofs(flux_fe);
+        projected[m].reinit(flux_dof_handlers.back()->n_dofs());
+      }
+
+    // j = -αD ∂ₙP + penalty P at each surface point, to its membrane.
+    std::vector<double>                  values;
+    std::vector<Tensor<1, 3>>            gradients;
+    std::vector<types::global_dof_index> flux_dofs(flux_fe.n_dofs_per_cell());
+    flows.assign(membranes.size(), 0.);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        const auto found = surface_points.find(cell->active_cell_index());
+        if (found == surface_points.end())
+          continue;
+        fe_values.reinit(cell);
+        const auto          &surface = fe_values.get_surface_fe_values();
+        const SurfacePoints &points  = found->second;
+        AssertDimension(surface->n_quadrature_points, points.size());
+        values.resize(points.size());
+        gradients.resize(points.size());
+        surface->get_function_values(solution, values);
+        surface->get_function_gradients(solution, gradients);
+        const double alpha_D = permeability(cell->material_id());
+        const double penalty = nitsche_weight(cell);
+        for (const unsigned int q : surface->quadrature_point_indices())
+          {
+            const double j =
+              -alpha_D * (gradients[q] * surface->normal_vector(q)) +
+              penalty * values[q];
+            const MembraneDistance::ClosestPoint &point = points[q];
+            flows[point.membrane] += j * surface->JxW(q);
+            const DoFHandler<2, 3>::active_cell_iterator membrane_cell(
+              membranes[point.membrane],
+              point.cell->level(),
+              point.cell->index(),
+              flux_dof_handlers[point.membrane].get());
+            membrane_cell->get_dof_indices(flux_dofs);
+            for (unsigned int i = 0; i < flux_dofs.size(); ++i)
+              projected[point.membrane][flux_dofs[i]] +=
+                j * flux_fe.shape_value(i, point.reference) * surface->JxW(q);
+          }
+      }
+    Utilities::MPI::sum(flows, communicator, flows);
+
+    // The lumped L² projection: j_i = ∫ j μ_i / ∫ μ_i on the membrane.
+    flux_map.resize(membranes.size());
+    const QGauss<2> quadrature(3);
+    FEValues<2, 3>  membrane_values(*membrane_mapping,
+                                   flux_fe,
+                                   quadrature,
+                                   update_values | update_JxW_values);
+    for (unsigned int m = 0; m < membranes.size(); ++m)
+      {
+        Utilities::MPI::sum(projected[m], communicator, projected[m]);
+        Vector<double> mass(projected[m].size());
+        for (const auto &cell : flux_dof_handlers[m]->active_cell_iterators())
+          {
+            membrane_values.reinit(cell);
+            cell->get_dof_indices(flux_dofs);
+            for (const unsigned int q :
+                 membrane_values.quadrature_point_indices())
+              for (unsigned int i = 0; i < flux_dofs.size(); ++i)
+                mass[flux_dofs[i]] +=
+                  membrane_values.shape_value(i, q) * membrane_values.JxW(q);
+          }
+        flux_map[m].reinit(mass.size());
+        for (unsigned int i = 0; i < mass.size(); ++i)
+          flux_map[m][i] = projected[m][i] / mass[i];
+      }
+
+    alveolar_flow = flow_through_boundary(dof_handler,
+                                          mapping,
+                                          solution,
+                                          pressure_boundary,
+                                          permeability,
+                                          communicator);
+  }
+
+  types::global_dof_index
+  CutCellDiffusion::n_dofs() const
+  {
+    return dof_handler.n_dofs();
+  }
+
+  unsigned int
+  CutCellDiffusion::n_cut_cells() const
+  {
+    unsigned int n = 0;
+    for (const auto &cell : mesh->active_cell_iterators())
+      n += is_cut(*classifier, cell);
+    return n;
+  }
+
+  CutCellDiffusion::OutputFiles
+  CutCellDiffusion::write_output(const std::string &directory,
+                                 const std::string &name,
+                                 const unsigned int counter,
+                                 const FieldData   &field_data) const
+  {
+    TimerOutput::Scope scope(timer, "diffusion: output");
+    Vector<float>      material_id(mesh->n_active_cells());
+    for (const auto &cell : mesh->active_cell_iterators())
+      material_id[cell->active_cell_index()] = cell->material_id();
+    Vector<double> membrane_distance(level_set);
+    membrane_distance *= -1.;
+
+    DataOut<3> data_out;
+    data_out.set_cell_selection(
+      [this](const typename Triangulation<3>::cell_iterator &cell) {
+        return cell->is_active() && cell->is_locally_owned() &&
+               classifier->location_to_level_set(cell) !=
+                 NonMatching::LocationToLevelSet::outside;
+      });
+    data_out.set_flags(fast_vtk_flags());
+    data_out.attach_dof_handler(dof_handler);
+    data_out.add_data_vector(solution, "co_pressure");
+    data_out.add_data_vector(level_set_dof_handler,
+                             membrane_distance,
+                             "membrane_distance");
+    data_out.add_data_vector(material_id,
+                             "material_id",
+                             DataOut<3>::type_cell_data);
+    data_out.build_patches(mapping, parameters.degree);
+    OutputFiles files;
+    files.pressure = write_vtu_pieces(
+      data_out, directory, name, counter, communicator, field_data);
+    files.membranes = write_flux_map(membranes,
+                                     *membrane_mapping,
+                                     flux_dof_handlers,
+                                     flux_map,
+                                     directory,
+                                     name + "_membranes_" +
+                                       Utilities::int_to_string(counter, 4),
+                                     communicator,
+                                     field_data);
+    return files;
+  }
+} // namespace rbc_ifem

@@ -1,0 +1,167 @@
+#include <rbc_ifem/base/output.h>
+#include <rbc_ifem/diffusion/diffusion_solver.h>
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/hp/fe_values.h>
+#include <deal.II/hp/mapping_collection.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/data_postprocessor.h>
+
+#include <algorithm>
+#include <numeric>
+
+namespace rbc_ifem
+{
+  namespace
+  {
+    /**
+     * -flux n on a membrane: the flux vector, pointing into the cell.
+     * DataOut gives normals to postprocessors only on faces (DataOutFaces),
+     * so they come from an FEValues at the patch points of each membrane
+     * cell.
+     */
+    class FluxVector : public DataPostprocessorVector<3>
+    {
+    public:
+      explicit FluxVector(const Mapping<2, 3> &mapping)
+        : DataPostprocessorVector<3>("co_flux_vector",
+                                     update_values | update_quadrature_points)
+        , mapping(mapping)
+      {}
+
+      void
+      evaluate_scalar_field(
+        const DataPostprocessorInputs::Scalar<3> &inputs,
+        std::vector<Vector<double>>              &computed) const override
+      {
+        const auto            cell = inputs.template get_cell<2>();
+        std::vector<Point<2>> unit_points(inputs.evaluation_points.size());
+        mapping.transform_points_real_to_unit_cell(cell,
+                                                   inputs.evaluation_points,
+                                                   unit_points);
+        FEValues<2, 3> fe_values(mapping,
+                                 fe,
+                                 Quadrature<2>(unit_points),
+                                 update_normal_vectors);
+        fe_values.reinit(cell);
+        for (unsigned int q = 0; q < unit_points.size(); ++q)
+          for (unsigned int d = 0; d < 3; ++d)
+            computed[q](d) =
+              -inputs.solution_values[q] * fe_values.normal_vector(q)[d];
+      }
+
+    private:
+      const Mapping<2, 3> &mapping;
+      const FE_Q<2, 3>     fe{1};
+    };
+  } // namespace
+
+  DiffusionSolver::DiffusionSolver(const double alveolar_pressure)
+    : alveolar_pressure(alveolar_pressure)
+  {}
+
+  const std::vector<double> &
+  DiffusionSolver::membrane_flows() const
+  {
+    return flows;
+  }
+
+  double
+  DiffusionSolver::total_flow() const
+  {
+    return std::accumulate(flows.begin(), flows.end(), 0.);
+  }
+
+  double
+  DiffusionSolver::dm_total() const
+  {
+    return total_flow() / alveolar_pressure;
+  }
+
+  double
+  DiffusionSolver::boundary_flow() const
+  {
+    return alveolar_flow;
+  }
+
+  unsigned int
+  DiffusionSolver::n_iterations() const
+  {
+    return iterations;
+  }
+
+  double
+  DiffusionSolver::flow_through_boundary(
+    const DoFHandler<3>                       &dof_handler,
+    const Mapping<3>                          &mapping,
+    const TrilinosWrappers::MPI::Vector       &P,
+    const types::boundary_id                   boundary,
+    const std::function<double(unsigned int)> &permeability,
+    const MPI_Comm                             communicator)
+  {
+    const IndexSet boundary_dofs =
+      DoFTools::extract_boundary_dofs(dof_handler, ComponentMask(), {boundary});
+    const auto        &fe_collection = dof_handler.get_fe_collection();
+    hp::QCollection<3> quadrature;
+    for (unsigned int i = 0; i < fe_collection.size(); ++i)
+      quadrature.push_back(
+        QGauss<3>(std::max(fe_collection[i].degree, 1u) + 1));
+    const hp::MappingCollection<3>       mappings(mapping);
+    hp::FEValues<3>                      hp_fe_values(mappings,
+                                 fe_collection,
+                                 quadrature,
+                                 update_gradients | update_JxW_values);
+    std::vector<Tensor<1, 3>>            gradients;
+    std::vector<types::global_dof_index> dofs;
+    double                               local_flow = 0.;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned() && cell->get_fe().n_dofs_per_cell() > 0)
+        {
+          dofs.resize(cell->get_fe().n_dofs_per_cell());
+          cell->get_dof_indices(dofs);
+          if (std::none_of(dofs.begin(), dofs.end(), [&](const auto dof) {
+                return boundary_dofs.is_element(dof);
+              }))
+            continue;
+          hp_fe_values.reinit(cell);
+          const FEValues<3> &fe_values = hp_fe_values.get_present_fe_values();
+          gradients.resize(fe_values.n_quadrature_points);
+          fe_values.get_function_gradients(P, gradients);
+          const double alpha_D = permeability(cell->material_id());
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            if (boundary_dofs.is_element(dofs[i]))
+              for (const unsigned int q : fe_values.quadrature_point_indices())
+                local_flow += alpha_D * gradients[q] *
+                              fe_values.shape_grad(i, q) * fe_values.JxW(q);
+        }
+    return Utilities::MPI::sum(local_flow, communicator);
+  }
+
+  std::string
+  DiffusionSolver::write_flux_map(
+    const std::vector<const Triangulation<2, 3> *>       &membranes,
+    const MappingQ<2, 3>                                 &mapping,
+    const std::vector<std::unique_ptr<DoFHandler<2, 3>>> &dof_handlers,
+    const std::vector<Vector<double>>                    &flux,
+    const std::string                                    &directory,
+    const std::string                                    &name,
+    const MPI_Comm                                        communicator,
+    const FieldData                                      &field_data)
+  {
+    const FluxVector flux_vector(mapping);
+    return write_membranes(
+      membranes,
+      mapping,
+      directory,
+      name,
+      communicator,
+      [&](const unsigned int m, DataOut<2, 3> &membrane_out) {
+        membrane_out.add_data_vector(*dof_handlers[m], flux[m], "co_flux");
+        membrane_out.add_data_vector(*dof_handlers[m], flux[m], flux_vector);
+      },
+      field_data);
+  }
+} // namespace rbc_ifem

@@ -1,0 +1,193 @@
+#include <rbc_ifem/diffusion/membrane_distance.h>
+
+#include <deal.II/base/quadrature_lib.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace rbc_ifem
+{
+  namespace
+  {
+    /// Samples per patch edge for the R-tree: the nodes and the midpoints
+    /// between them, so the nearest sample is a good Gauss-Newton start.
+    unsigned int
+    n_samples_1d(const unsigned int degree)
+    {
+      return 2 * degree + 1;
+    }
+
+    /// Nearest samples whose patches are tried for each query.
+    constexpr unsigned int n_candidates = 8;
+
+    /// The largest mapping degree the fixed-size evaluation supports.
+    constexpr unsigned int max_degree = 4;
+  } // namespace
+
+  MembraneDistance::MembraneDistance(
+    const std::vector<const Triangulation<2, 3> *> &membranes,
+    const MappingQ<2, 3>                           &mapping,
+    const std::optional<double>                    &period)
+    : period(period)
+  {
+    const unsigned int degree = mapping.get_degree();
+    AssertThrow(degree >= 1 && degree <= max_degree,
+                ExcMessage("MembraneDistance takes membrane mappings of "
+                           "degree 1 to 4"));
+    const QGaussLobatto<1> lobatto(degree + 1);
+    for (const auto &p : lobatto.get_points())
+      nodes_1d.push_back(p[0]);
+    std::sort(nodes_1d.begin(), nodes_1d.end());
+    std::vector<Point<1>> support;
+    for (const double t : nodes_1d)
+      support.emplace_back(t);
+    basis = Polynomials::generate_complete_Lagrange_basis(support);
+
+    const unsigned int n_nodes = degree + 1;
+    const QGauss<2>    volume_quadrature(degree + 2);
+    for (unsigned int m = 0; m < membranes.size(); ++m)
+      {
+        const unsigned int first  = patches.size();
+        double             volume = 0.;
+        for (const auto &cell : membranes[m]->active_cell_iterators())
+          {
+            Patch patch{m, cell, {}, 1.};
+            for (unsigned int j = 0; j < n_nodes; ++j)
+              for (unsigned int i = 0; i < n_nodes; ++i)
+                patch.nodes.push_back(mapping.transform_unit_to_real_cell(
+                  cell, Point<2>(nodes_1d[i], nodes_1d[j])));
+            // The enclosed volume, (1/3) ∫ F · (∂₀F × ∂₁F) dξ, tells
+            // which side the tangents' normal points to.
+            for (unsigned int q = 0; q < volume_quadrature.size(); ++q)
+              {
+                Point<3>     F;
+                Tensor<1, 3> dF0, dF1;
+                evaluate(patch, volume_quadrature.point(q), F, dF0, dF1);
+                volume += F * cross_product_3d(dF0, dF1) *
+                          volume_quadrature.weight(q) / 3.;
+              }
+            patches.push_back(std::move(patch));
+          }
+        for (unsigned int k = first; k < patches.size(); ++k)
+          patches[k].orientation = volume < 0. ? -1. : 1.;
+      }
+
+    const unsigned int n_s = n_samples_1d(degree);
+    for (unsigned int k = 0; k < patches.size(); ++k)
+      for (unsigned int j = 0; j < n_s; ++j)
+        for (unsigned int i = 0; i < n_s; ++i)
+          {
+            const Point<2> xi(i / (n_s - 1.), j / (n_s - 1.));
+            Point<3>       F;
+            Tensor<1, 3>   dF0, dF1;
+            evaluate(patches[k], xi, F, dF0, dF1);
+            samples.push_back(F);
+            sample_patch.push_back(k);
+            sample_xi.push_back(xi);
+          }
+    tree = std::make_unique<Tree>(pack_rtree_of_indices(samples));
+  }
+
+  void
+  MembraneDistance::evaluate(const Patch    &patch,
+                             const Point<2> &xi,
+                             Point<3>       &F,
+                             Tensor<1, 3>   &dF0,
+                             Tensor<1, 3>   &dF1) const
+  {
+    const unsigned int                                n = basis.size();
+    std::array<std::array<double, 2>, max_degree + 1> v0, v1;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        basis[i].value(xi[0], 1, v0[i].data());
+        basis[i].value(xi[1], 1, v1[i].data());
+      }
+    F   = Point<3>();
+    dF0 = Tensor<1, 3>();
+    dF1 = Tensor<1, 3>();
+    for (unsigned int j = 0; j < n; ++j)
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          const Tensor<1, 3> &node = patch.nodes[j * n + i];
+          F += v0[i][0] * v1[j][0] * node;
+          dF0 += v0[i][1] * v1[j][0] * node;
+          dF1 += v0[i][0] * v1[j][1] * node;
+        }
+  }
+
+  MembraneDistance::ClosestPoint
+  MembraneDistance::project(const Patch    &patch,
+                            const Point<3> &x,
+                            Point<2>        xi) const
+  {
+    // Gauss-Newton on |F(ξ) - x|², ξ kept in the unit square: near the
+    // surface, where the level set matters, it converges in a few steps.
+    Point<3>     F;
+    Tensor<1, 3> dF0, dF1;
+    for (unsigned int iteration = 0; iteration < 30; ++iteration)
+      {
+        evaluate(patch, xi, F, dF0, dF1);
+        const Tensor<1, 3> r   = F - x;
+        const double       a00 = dF0 * dF0, a01 = dF0 * dF1, a11 = dF1 * dF1;
+        const double       g0 = dF0 * r, g1 = dF1 * r;
+        const double       det = a00 * a11 - a01 * a01;
+        if (!(det > 0.))
+          break;
+        const Point<2> previous = xi;
+        xi[0] -= (a11 * g0 - a01 * g1) / det;
+        xi[1] -= (a00 * g1 - a01 * g0) / det;
+        for (unsigned int d = 0; d < 2; ++d)
+          xi[d] = std::clamp(xi[d], 0., 1.);
+        if (previous.distance_square(xi) < 1e-24)
+          break;
+      }
+    evaluate(patch, xi, F, dF0, dF1);
+
+    ClosestPoint result;
+    result.membrane  = patch.membrane;
+    result.cell      = patch.cell;
+    result.reference = xi;
+    result.point     = F;
+    result.normal    = cross_product_3d(dF0, dF1);
+    result.normal *= patch.orientation / result.normal.norm();
+    const double distance = x.distance(F);
+    result.signed_distance =
+      (x - F) * result.normal < 0. ? -distance : distance;
+    return result;
+  }
+
+  MembraneDistance::ClosestPoint
+  MembraneDistance::closest_point(const Point<3> &x) const
+  {
+    std::vector<Point<3>> images{x};
+    if (period)
+      for (const double shift : {-*period, *period})
+        images.push_back(x + Tensor<1, 3>({shift, 0., 0.}));
+
+    ClosestPoint best;
+    best.signed_distance = std::numeric_limits<double>::infinity();
+    std::vector<std::size_t> nearest;
+    for (const Point<3> &image : images)
+      {
+        nearest.clear();
+        tree->query(boost::geometry::index::nearest(image, n_candidates),
+                    std::back_inserter(nearest));
+        std::vector<unsigned int> tried;
+        for (const std::size_t k : nearest)
+          {
+            if (std::find(tried.begin(), tried.end(), sample_patch[k]) !=
+                tried.end())
+              continue;
+            tried.push_back(sample_patch[k]);
+            const ClosestPoint candidate =
+              project(patches[sample_patch[k]], image, sample_xi[k]);
+            if (std::abs(candidate.signed_distance) <
+                std::abs(best.signed_distance))
+              best = candidate;
+          }
+      }
+    return best;
+  }
+} // namespace rbc_ifem

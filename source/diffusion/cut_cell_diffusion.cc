@@ -400,16 +400,19 @@ namespace rbc_ifem
   void
   CutCellDiffusion::assemble_ghost_penalty()
   {
-    const unsigned int                   k = parameters.degree;
-    const QGauss<2>                      quadrature(k + 1);
-    FEInterfaceValues<3>                 interface_values(mapping,
+    const unsigned int   k = parameters.degree;
+    const QGauss<2>      quadrature(k + 1);
+    FEInterfaceValues<3> interface_values(mapping,
                                           fe_collection[lagrange],
                                           quadrature,
                                           update_gradients | update_hessians |
                                             update_JxW_values |
                                             update_normal_vectors);
-    FullMatrix<double>                   local;
-    Vector<double>                       local_rhs;
+    FullMatrix<double>   local;
+    Vector<double>       local_rhs;
+    // n ≤ twice the DoFs of a cell.
+    std::vector<double> first(2 * fe_collection[lagrange].n_dofs_per_cell()),
+      second(first.size());
     std::vector<types::global_dof_index> dofs;
     for_each_ghost_penalty_face([&](const auto &cell, const unsigned int face) {
       const auto neighbor = cell->neighbor(face);
@@ -440,30 +443,24 @@ namespace rbc_ifem
       local.reinit(n, n);
       for (const unsigned int q : interface_values.quadrature_point_indices())
         {
+          // The jumps of ∂ₙφ_i and ∂ₙₙφ_i, once per shape function.
           const Tensor<1, 3> &normal = interface_values.normal(q);
           for (unsigned int i = 0; i < n; ++i)
             {
-              const double d1_i =
+              first[i] =
                 normal * interface_values.jump_in_shape_gradients(i, q);
-              const double d2_i =
+              second[i] =
                 k > 1 ?
                   normal *
                     (interface_values.jump_in_shape_hessians(i, q) * normal) :
                   0.;
-              for (unsigned int j = 0; j < n; ++j)
-                {
-                  const double d1_j =
-                    normal * interface_values.jump_in_shape_gradients(j, q);
-                  const double d2_j =
-                    k > 1 ?
-                      normal * (interface_values.jump_in_shape_hessians(j, q) *
-                                normal) :
-                      0.;
-                  local(i, j) += weight *
-                                 (h * d1_i * d1_j + h * h * h * d2_i * d2_j) *
-                                 interface_values.JxW(q);
-                }
             }
+          const double w1 = weight * h * interface_values.JxW(q);
+          const double w2 = weight * h * h * h * interface_values.JxW(q);
+          for (unsigned int i = 0; i < n; ++i)
+            for (unsigned int j = 0; j < n; ++j)
+              local(i, j) +=
+                w1 * first[i] * first[j] + w2 * second[i] * second[j];
         }
       dofs = interface_values.get_interface_dof_indices();
       local_rhs.reinit(n);

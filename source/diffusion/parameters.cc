@@ -109,7 +109,10 @@ namespace rbc_ifem
                   "the normal derivatives of order 1 to k across the faces "
                   "of cut cells, scaled by αD h^(2j-1)), dimensionless. It "
                   "keeps the system well conditioned however small the "
-                  "plasma part of a cut cell is.",
+                  "plasma part of a cut cell is. The penalty is only weakly "
+                  "consistent: 0.5 moved one cell's DM by 0.15% at band "
+                  "refinements 2 where 0.05 moves it by 0.01% "
+                  "(doc/diffusion.md).",
                   Patterns::Double(0.));
     add_parameter(prm,
                   "Linear solver tolerance",

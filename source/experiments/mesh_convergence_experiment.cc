@@ -19,6 +19,15 @@ namespace rbc_ifem
                   "further level refines the diffusion mesh's band and "
                   "the membranes once more.",
                   Patterns::Integer(2, 6));
+    add_parameter(prm,
+                  "Refine membranes",
+                  refine_membranes,
+                  "Refine the membranes with the band from level to level. "
+                  "The Lagrange multiplier needs it (its membranes must "
+                  "stay about twice as coarse as the mesh around them); "
+                  "with cut cells false keeps Cells/Surface refinements on "
+                  "every level, so that the table shows the convergence in "
+                  "the diffusion mesh alone.");
     prm.leave_subsection();
   }
 
@@ -42,6 +51,14 @@ namespace rbc_ifem
                                           parameters.cells.surface_refinements);
   }
 
+  unsigned int
+  MeshConvergenceExperiment::membrane_refinements(
+    const unsigned int level) const
+  {
+    return parameters.cells.surface_refinements +
+           (study.refine_membranes ? level : 0);
+  }
+
   void
   MeshConvergenceExperiment::execute()
   {
@@ -49,12 +66,12 @@ namespace rbc_ifem
     std::unique_ptr<const PlacedCells> cells = std::move(coarsest);
     for (unsigned int level = 0; level < study.n_levels; ++level)
       {
-        if (level > 0)
-          cells = std::make_unique<const PlacedCells>(
-            parameters.layout,
-            parameters.geometry,
-            parameters.cells,
-            parameters.cells.surface_refinements + level);
+        if (level > 0 && study.refine_membranes)
+          cells =
+            std::make_unique<const PlacedCells>(parameters.layout,
+                                                parameters.geometry,
+                                                parameters.cells,
+                                                membrane_refinements(level));
         levels.push_back(
           solve(*cells, parameters.mesh.diffusion_band_refinements + level));
         report("level " + std::to_string(level) + ", " +
@@ -90,7 +107,7 @@ namespace rbc_ifem
           row << "nan";
         else
           row << std::abs(u.dm_total - levels[l - 1].dm_total) / u.dm_total;
-        row << parameters.cells.surface_refinements + l
+        row << membrane_refinements(l)
             << parameters.mesh.diffusion_band_refinements + l << u.iterations
             << u.seconds << std::abs(u.dm_total - limit) / limit;
         table.add_row(row.str());

@@ -36,7 +36,7 @@ namespace rbc_ifem
   UptakeExperiment::report(const std::string &what, const Uptake &uptake)
   {
     pcout << "  " << what << ": " << uptake.n_dofs << " DoFs, "
-          << uptake.iterations << " FGMRES iterations, " << std::setprecision(4)
+          << uptake.iterations << " solver iterations, " << std::setprecision(4)
           << uptake.seconds << " s; DM " << std::setprecision(6)
           << uptake.dm_total << " µm³/(s Torr)" << std::endl;
   }

@@ -11,6 +11,10 @@ namespace rbc_ifem
   struct MeshConvergenceParameters : public ExperimentParameters
   {
     unsigned int n_levels = 4;
+    /// Refine the membranes with the band (the multiplier needs it: its
+    /// membranes must stay coarser than the mesh); false keeps
+    /// Cells/Surface refinements on every level.
+    bool refine_membranes = true;
 
     void
     add_parameters(ParameterHandler &prm) override;
@@ -20,7 +24,8 @@ namespace rbc_ifem
    * Experiment "mesh convergence": DM of the layout of subsection Layout on
    * successively finer meshes, level 0 the mesh of subsection Mesh and
    * Cells/Surface refinements, each further level one more refinement of
-   * the diffusion mesh's band and of the membranes. Writes convergence.csv
+   * the diffusion mesh's band and (with Refine membranes) of the
+   * membranes. Writes convergence.csv
    * with each level's change from the one before and its difference from
    * the Richardson-extrapolated limit.
    */
@@ -40,6 +45,9 @@ namespace rbc_ifem
     setup() override;
     void
     execute() override;
+    /// Cells/Surface refinements of the membranes of @p level.
+    unsigned int
+    membrane_refinements(const unsigned int level) const;
 
     const MeshConvergenceParameters    study;
     std::unique_ptr<const PlacedCells> coarsest; ///< the cells of level 0

@@ -44,6 +44,14 @@ namespace rbc_ifem
     }
   } // namespace
 
+  MembranesShareCells::MembranesShareCells(
+    std::vector<unsigned int>             cells,
+    std::pair<unsigned int, unsigned int> membranes)
+    : std::runtime_error("two membranes share a cell of the diffusion mesh")
+    , cells(std::move(cells))
+    , membranes(membranes)
+  {}
+
   CutCellDiffusion::CutCellDiffusion(
     const DiffusionParameters                 &parameters,
     const std::function<double(unsigned int)> &permeability,
@@ -196,10 +204,11 @@ namespace rbc_ifem
                                        level_set_dof_handler,
                                        level_set);
     // What the membranes ask of the mesh, found on this rank's cut cells:
-    // [0] a cut cell outside the plasma (a membrane in the vessel wall),
-    // [1] a cut cell that two membranes share (closer than a cell), and
-    // [2 + m] the number of surface points on membrane m.
-    std::vector<unsigned int>             findings(2 + membranes.size(), 0);
+    // [0] a cut cell outside the plasma (a membrane in the vessel wall) and
+    // [1 + m] the number of surface points on membrane m; and the cut cells
+    // that two membranes share.
+    std::vector<unsigned int>             findings(1 + membranes.size(), 0);
+    std::vector<unsigned int>             shared_cells;
     std::pair<unsigned int, unsigned int> shared_by{0, 0};
     surface_points.clear();
     for (const auto &cell : dof_handler.active_cell_iterators())
@@ -215,13 +224,16 @@ namespace rbc_ifem
           for (const auto &x : surface->get_quadrature_points())
             {
               points.push_back(distance->closest_point(x));
-              ++findings[2 + points.back().membrane];
-              if (points.back().membrane != points.front().membrane)
-                {
-                  findings[1] = 1;
-                  shared_by = {points.front().membrane, points.back().membrane};
-                }
+              ++findings[1 + points.back().membrane];
             }
+          for (const auto &point : points)
+            if (point.membrane != points.front().membrane)
+              {
+                shared_cells.push_back(cell->active_cell_index());
+                shared_by = {std::min(point.membrane, points.front().membrane),
+                             std::max(point.membrane, points.front().membrane)};
+                break;
+              }
         }
     Utilities::MPI::max(findings, communicator, findings);
     if (findings[0] > 0)
@@ -229,27 +241,29 @@ namespace rbc_ifem
                        "a membrane in the vessel wall",
                        "a membrane reaches out of the lumen into the vessel "
                        "wall; every cell must lie inside the capillary.");
-    if (findings[1] > 0)
-      {
-        const unsigned int first =
-          Utilities::MPI::max(shared_by.first, communicator);
-        const unsigned int second =
-          Utilities::MPI::max(shared_by.second, communicator);
-        throw InputError(
-          "Layout",
-          "cells " + std::to_string(std::min(first, second)) + " and " +
-            std::to_string(std::max(first, second)),
-          "these two membranes pass through one cell of the diffusion mesh "
-          "(they are closer than the mesh resolves): raise Mesh/Diffusion "
-          "band refinements, or move the cells apart.");
-      }
     for (unsigned int m = 0; m < membranes.size(); ++m)
-      if (findings[2 + m] == 0)
+      if (findings[1 + m] == 0)
         throw InputError("Layout",
                          "cell " + std::to_string(m),
                          "this membrane cuts no cell of the diffusion mesh: "
                          "it lies outside the capillary, or within one "
                          "cell of the mesh.");
+    std::vector<unsigned int> all_shared;
+    for (const auto &cells :
+         Utilities::MPI::all_gather(communicator, shared_cells))
+      all_shared.insert(all_shared.end(), cells.begin(), cells.end());
+    if (!all_shared.empty())
+      {
+        // The pair from the lowest rank that found one.
+        for (const auto &pair :
+             Utilities::MPI::all_gather(communicator, shared_by))
+          if (pair.first != pair.second)
+            {
+              shared_by = pair;
+              break;
+            }
+        throw MembranesShareCells(all_shared, shared_by);
+      }
   }
 
   bool

@@ -42,6 +42,26 @@ namespace rbc_ifem
                          band_refinements);
     }
 
+    /// Refine the active cells @p cells of @p mesh and their face
+    /// neighbours (the same on every rank: the indices are).
+    void
+    refine_cells_and_neighbors(parallel::shared::Triangulation<3> &mesh,
+                               const std::vector<unsigned int>    &cells)
+    {
+      std::vector<bool> flagged(mesh.n_active_cells(), false);
+      for (const unsigned int index : cells)
+        flagged[index] = true;
+      for (const auto &cell : mesh.active_cell_iterators())
+        if (flagged[cell->active_cell_index()])
+          {
+            cell->set_refine_flag();
+            for (const unsigned int f : cell->face_indices())
+              if (!cell->at_boundary(f) && cell->neighbor(f)->is_active())
+                cell->neighbor(f)->set_refine_flag();
+          }
+      mesh.execute_coarsening_and_refinement();
+    }
+
     /// The CO diffusion problem of @p d, set up on @p mesh with the
     /// membranes @p surfaces: everything before the assembly. A mesh too
     /// coarse for the membranes is an InputError naming @p band_refinements,
@@ -121,14 +141,38 @@ namespace rbc_ifem
       {
         make_uptake_mesh(
           mesh, geometry, mesh_parameters, surfaces, band_refinements, timer);
-        diffusion = set_up_diffusion(mesh,
-                                     geometry,
-                                     d,
-                                     surfaces,
-                                     mapping,
-                                     band_refinements,
-                                     communicator,
-                                     timer);
+        // Cut cells: refine where two membranes share a mesh cell, until
+        // none does.
+        for (unsigned int refinement = 0;; ++refinement)
+          try
+            {
+              diffusion = set_up_diffusion(mesh,
+                                           geometry,
+                                           d,
+                                           surfaces,
+                                           mapping,
+                                           band_refinements,
+                                           communicator,
+                                           timer);
+              return;
+            }
+          catch (const MembranesShareCells &e)
+            {
+              if (refinement == mesh_parameters.diffusion_gap_refinements)
+                throw InputError(
+                  "Layout",
+                  "cells " + std::to_string(e.membranes.first) + " and " +
+                    std::to_string(e.membranes.second),
+                  "these two membranes pass through one cell of the "
+                  "diffusion mesh after " +
+                    std::to_string(refinement) +
+                    " local refinements (they are closer than the mesh "
+                    "resolves): raise Mesh/Diffusion gap refinements or "
+                    "Mesh/Diffusion band refinements, or move the cells "
+                    "apart.");
+              diffusion.reset();
+              refine_cells_and_neighbors(mesh, e.cells);
+            }
       }
 
       parallel::shared::Triangulation<3> mesh;

@@ -97,6 +97,16 @@ namespace rbc_ifem
                   "refinements = Cells/Surface refinements).",
                   Patterns::Integer(0, 5));
     add_parameter(prm,
+                  "Diffusion gap refinements",
+                  diffusion_gap_refinements,
+                  "Diffusion/Method = cut cell only: where two membranes "
+                  "pass through one cell of the diffusion mesh (a gap "
+                  "narrower than the mesh), that cell and its neighbours are "
+                  "refined once more, up to this many times; if two "
+                  "membranes still share a cell the run stops with an "
+                  "error. 0 turns the local refinement off.",
+                  Patterns::Integer(0, 6));
+    add_parameter(prm,
                   "Band width",
                   band_width,
                   "Half-width of the band around the membranes that band "

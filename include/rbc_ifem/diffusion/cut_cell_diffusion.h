@@ -18,9 +18,30 @@
 
 #include <map>
 #include <optional>
+#include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace rbc_ifem
 {
+  /**
+   * Two membranes pass through one cell of the diffusion mesh: the gap
+   * between them is narrower than the mesh, and the level set cannot tell
+   * them apart. Thrown by CutCellDiffusion::setup() on every rank, with
+   * every such cell, so that the caller can refine them and try again.
+   */
+  class MembranesShareCells : public std::runtime_error
+  {
+  public:
+    MembranesShareCells(std::vector<unsigned int>             cells,
+                        std::pair<unsigned int, unsigned int> membranes);
+
+    /// Active cell indices of the mesh cells, on every rank.
+    const std::vector<unsigned int> cells;
+    /// Two of the membranes (indices into the membranes) that share one.
+    const std::pair<unsigned int, unsigned int> membranes;
+  };
+
   /**
    * Steady CO uptake on cut cells (Diffusion/Method = cut cell): the plasma
    * is the part of the diffusion mesh outside every red cell, described by a
@@ -70,7 +91,7 @@ namespace rbc_ifem
      * Build the level set of the membranes, classify the cells, distribute
      * the DoFs on the cells that reach into the plasma, find each surface
      * quadrature point's membrane. Throws InputError if a membrane leaves
-     * the lumen or two membranes come closer than one mesh cell.
+     * the lumen, MembranesShareCells if two pass through one mesh cell.
      */
     void
     setup(const parallel::shared::Triangulation<3>       &mesh,

@@ -51,6 +51,9 @@ namespace rbc_ifem
     unsigned int diffusion_global_refinements = 1;
     unsigned int diffusion_band_refinements   = 3;
     double       band_width                   = 0.5; ///< [µm]
+    /// Diffusion/Method = cut cell: refinements where two membranes share
+    /// a cell of the diffusion mesh.
+    unsigned int diffusion_gap_refinements = 3;
 
     void
     add_parameters(ParameterHandler &prm);

@@ -182,39 +182,17 @@ namespace rbc_ifem
     dof_handler.reinit(mesh);
     dof_handler.distribute_dofs(fe);
     owned_dofs = dof_handler.locally_owned_dofs();
-    setup_constraints();
+    make_pressure_constraints(dof_handler,
+                              mapping,
+                              pressure_boundary,
+                              parameters.alveolar_pressure,
+                              period,
+                              constraints);
     setup_multipliers();
     locate_membrane_points();
     setup_matrices();
   }
 
-  void
-  CODiffusion::setup_constraints()
-  {
-    IndexSet relevant_dofs;
-    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
-    constraints.clear();
-    constraints.reinit(relevant_dofs);
-    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
-    VectorTools::interpolate_boundary_values(mapping,
-                                             dof_handler,
-                                             pressure_boundary,
-                                             Functions::ConstantFunction<3>(
-                                               parameters.alveolar_pressure),
-                                             constraints);
-    if (period)
-      {
-        std::vector<GridTools::PeriodicFacePair<DoFHandler<3>::cell_iterator>>
-          ends;
-        GridTools::collect_periodic_faces(dof_handler,
-                                          DiffusionBoundary::inlet_end,
-                                          DiffusionBoundary::outlet_end,
-                                          /*direction=*/0,
-                                          ends);
-        DoFTools::make_periodicity_constraints<3, 3>(ends, constraints);
-      }
-    constraints.close();
-  }
 
   void
   CODiffusion::setup_multipliers()
@@ -664,10 +642,6 @@ namespace rbc_ifem
                              "material_id",
                              DataOut<3>::type_cell_data);
     data_out.build_patches(mapping, fe.degree);
-    OutputFiles files;
-    files.pressure = write_vtu_pieces(
-      data_out, directory, name, counter, communicator, field_data);
-
     std::vector<Vector<double>> flux(membranes.size());
     for (unsigned int m = 0; m < membranes.size(); ++m)
       {
@@ -675,15 +649,15 @@ namespace rbc_ifem
         for (unsigned int i = 0; i < flux[m].size(); ++i)
           flux[m][i] = multiplier_values[multiplier_offsets[m] + i];
       }
-    files.membranes = write_flux_map(membranes,
-                                     *membrane_mapping,
-                                     multiplier_dof_handlers,
-                                     flux,
-                                     directory,
-                                     name + "_membranes_" +
-                                       Utilities::int_to_string(counter, 4),
-                                     communicator,
-                                     field_data);
-    return files;
+    return write_fields(data_out,
+                        membranes,
+                        *membrane_mapping,
+                        multiplier_dof_handlers,
+                        flux,
+                        directory,
+                        name,
+                        counter,
+                        communicator,
+                        field_data);
   }
 } // namespace rbc_ifem

@@ -99,7 +99,12 @@ namespace rbc_ifem
       std::make_unique<MembraneDistance>(membranes, membrane_mapping, period);
     compute_level_set();
     distribute_dofs();
-    setup_constraints();
+    make_pressure_constraints(dof_handler,
+                              mapping,
+                              pressure_boundary,
+                              parameters.alveolar_pressure,
+                              period,
+                              constraints);
     locate_surface_points();
     setup_matrix();
   }
@@ -163,46 +168,15 @@ namespace rbc_ifem
     DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
   }
 
-  void
-  CutCellDiffusion::setup_constraints()
-  {
-    constraints.clear();
-    constraints.reinit(relevant_dofs);
-    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
-    VectorTools::interpolate_boundary_values(mapping_collection,
-                                             dof_handler,
-                                             pressure_boundary,
-                                             Functions::ConstantFunction<3>(
-                                               parameters.alveolar_pressure),
-                                             constraints);
-    if (period)
-      {
-        std::vector<GridTools::PeriodicFacePair<DoFHandler<3>::cell_iterator>>
-          ends;
-        GridTools::collect_periodic_faces(dof_handler,
-                                          DiffusionBoundary::inlet_end,
-                                          DiffusionBoundary::outlet_end,
-                                          /*direction=*/0,
-                                          ends);
-        DoFTools::make_periodicity_constraints<3, 3>(ends, constraints);
-      }
-    constraints.close();
-  }
 
   void
   CutCellDiffusion::locate_surface_points()
   {
     TimerOutput::Scope             scope(timer, "diffusion: surface points");
     NonMatching::RegionUpdateFlags flags;
-    flags.surface = update_quadrature_points;
-    NonMatching::FEValues<3> fe_values(mapping_collection,
-                                       fe_collection,
-                                       cell_quadrature,
-                                       line_quadrature,
-                                       flags,
-                                       *classifier,
-                                       level_set_dof_handler,
-                                       level_set);
+    flags.surface                           = update_quadrature_points;
+    const auto                fe_values_ptr = cut_cell_values(flags);
+    NonMatching::FEValues<3> &fe_values     = *fe_values_ptr;
     // What the membranes ask of the mesh, found on this rank's cut cells:
     // [0] a cut cell outside the plasma (a membrane in the vessel wall) and
     // [1 + m] the number of surface points on membrane m; and the cut cells
@@ -321,6 +295,20 @@ namespace rbc_ifem
     solution.reinit(owned_dofs, relevant_dofs, communicator);
   }
 
+  std::unique_ptr<NonMatching::FEValues<3>>
+  CutCellDiffusion::cut_cell_values(
+    const NonMatching::RegionUpdateFlags &flags) const
+  {
+    return std::make_unique<NonMatching::FEValues<3>>(mapping_collection,
+                                                      fe_collection,
+                                                      cell_quadrature,
+                                                      line_quadrature,
+                                                      flags,
+                                                      *classifier,
+                                                      level_set_dof_handler,
+                                                      level_set);
+  }
+
   double
   CutCellDiffusion::nitsche_weight(
     const DoFHandler<3>::active_cell_iterator &cell) const
@@ -357,17 +345,11 @@ namespace rbc_ifem
     flags.inside  = update_gradients | update_JxW_values;
     flags.surface = update_values | update_gradients | update_JxW_values |
                     update_normal_vectors;
-    NonMatching::FEValues<3> fe_values(mapping_collection,
-                                       fe_collection,
-                                       cell_quadrature,
-                                       line_quadrature,
-                                       flags,
-                                       *classifier,
-                                       level_set_dof_handler,
-                                       level_set);
-    const unsigned int       n = fe_collection[lagrange].n_dofs_per_cell();
-    FullMatrix<double>       cell_matrix(n, n);
-    Vector<double>           cell_rhs(n);
+    const auto                fe_values_ptr = cut_cell_values(flags);
+    NonMatching::FEValues<3> &fe_values     = *fe_values_ptr;
+    const unsigned int        n = fe_collection[lagrange].n_dofs_per_cell();
+    FullMatrix<double>        cell_matrix(n, n);
+    Vector<double>            cell_rhs(n);
     std::vector<types::global_dof_index> dofs(n);
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned() && cell->active_fe_index() == lagrange)
@@ -538,15 +520,9 @@ namespace rbc_ifem
     NonMatching::RegionUpdateFlags flags;
     flags.surface = update_values | update_gradients | update_JxW_values |
                     update_normal_vectors;
-    NonMatching::FEValues<3> fe_values(mapping_collection,
-                                       fe_collection,
-                                       cell_quadrature,
-                                       line_quadrature,
-                                       flags,
-                                       *classifier,
-                                       level_set_dof_handler,
-                                       level_set);
-    const FE_Q<2, 3>         flux_fe(1);
+    const auto                fe_values_ptr = cut_cell_values(flags);
+    NonMatching::FEValues<3> &fe_values     = *fe_values_ptr;
+    const FE_Q<2, 3>          flux_fe(1);
     flux_dof_handlers.clear();
     std::vector<Vector<double>> projected(membranes.size());
     for (unsigned int m = 0; m < membranes.size(); ++m)
@@ -676,18 +652,15 @@ namespace rbc_ifem
                              "material_id",
                              DataOut<3>::type_cell_data);
     data_out.build_patches(mapping, parameters.degree);
-    OutputFiles files;
-    files.pressure = write_vtu_pieces(
-      data_out, directory, name, counter, communicator, field_data);
-    files.membranes = write_flux_map(membranes,
-                                     *membrane_mapping,
-                                     flux_dof_handlers,
-                                     flux_map,
-                                     directory,
-                                     name + "_membranes_" +
-                                       Utilities::int_to_string(counter, 4),
-                                     communicator,
-                                     field_data);
-    return files;
+    return write_fields(data_out,
+                        membranes,
+                        *membrane_mapping,
+                        flux_dof_handlers,
+                        flux_map,
+                        directory,
+                        name,
+                        counter,
+                        communicator,
+                        field_data);
   }
 } // namespace rbc_ifem

@@ -1,14 +1,18 @@
 #include <rbc_ifem/base/output.h>
 #include <rbc_ifem/diffusion/diffusion_solver.h>
+#include <rbc_ifem/geometry/capillary_mesh.h>
 
+#include <deal.II/base/function.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/grid_tools.h>
 #include <deal.II/hp/fe_values.h>
 #include <deal.II/hp/mapping_collection.h>
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
+#include <deal.II/numerics/vector_tools.h>
 
 #include <algorithm>
 #include <numeric>
@@ -140,28 +144,68 @@ namespace rbc_ifem
     return Utilities::MPI::sum(local_flow, communicator);
   }
 
-  std::string
-  DiffusionSolver::write_flux_map(
+  void
+  DiffusionSolver::make_pressure_constraints(
+    const DoFHandler<3>         &dof_handler,
+    const Mapping<3>            &mapping,
+    const types::boundary_id     pressure_boundary,
+    const double                 pressure,
+    const std::optional<double> &period,
+    AffineConstraints<double>   &constraints)
+  {
+    IndexSet relevant_dofs;
+    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
+    constraints.clear();
+    constraints.reinit(relevant_dofs);
+    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+    VectorTools::interpolate_boundary_values(hp::MappingCollection<3>(mapping),
+                                             dof_handler,
+                                             pressure_boundary,
+                                             Functions::ConstantFunction<3>(
+                                               pressure),
+                                             constraints);
+    if (period)
+      {
+        std::vector<GridTools::PeriodicFacePair<DoFHandler<3>::cell_iterator>>
+          ends;
+        GridTools::collect_periodic_faces(dof_handler,
+                                          DiffusionBoundary::inlet_end,
+                                          DiffusionBoundary::outlet_end,
+                                          /*direction=*/0,
+                                          ends);
+        DoFTools::make_periodicity_constraints<3, 3>(ends, constraints);
+      }
+    constraints.close();
+  }
+
+  DiffusionSolver::OutputFiles
+  DiffusionSolver::write_fields(
+    const DataOut<3>                                     &data_out,
     const std::vector<const Triangulation<2, 3> *>       &membranes,
     const MappingQ<2, 3>                                 &mapping,
     const std::vector<std::unique_ptr<DoFHandler<2, 3>>> &dof_handlers,
     const std::vector<Vector<double>>                    &flux,
     const std::string                                    &directory,
     const std::string                                    &name,
+    const unsigned int                                    counter,
     const MPI_Comm                                        communicator,
     const FieldData                                      &field_data)
   {
+    OutputFiles files;
+    files.pressure = write_vtu_pieces(
+      data_out, directory, name, counter, communicator, field_data);
     const FluxVector flux_vector(mapping);
-    return write_membranes(
+    files.membranes = write_membranes(
       membranes,
       mapping,
       directory,
-      name,
+      name + "_membranes_" + Utilities::int_to_string(counter, 4),
       communicator,
       [&](const unsigned int m, DataOut<2, 3> &membrane_out) {
         membrane_out.add_data_vector(*dof_handlers[m], flux[m], "co_flux");
         membrane_out.add_data_vector(*dof_handlers[m], flux[m], flux_vector);
       },
       field_data);
+    return files;
   }
 } // namespace rbc_ifem

@@ -141,8 +141,6 @@ namespace rbc_ifem
     void
     locate_membrane_points();
     void
-    setup_constraints();
-    void
     setup_matrices();
     void
     assemble_stiffness();

@@ -14,6 +14,7 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/non_matching/fe_values.h>
 #include <deal.II/non_matching/mesh_classifier.h>
 
 #include <map>
@@ -132,8 +133,6 @@ namespace rbc_ifem
     void
     distribute_dofs();
     void
-    setup_constraints();
-    void
     locate_surface_points();
     void
     setup_matrix();
@@ -158,6 +157,10 @@ namespace rbc_ifem
     template <typename Function>
     void
     for_each_ghost_penalty_face(const Function &f) const;
+
+    /// FEValues on the plasma part and on the membrane part of each cell.
+    std::unique_ptr<NonMatching::FEValues<3>>
+    cut_cell_values(const NonMatching::RegionUpdateFlags &flags) const;
 
     /// γ_N k(k+1) αD / h on @p cell.
     double

@@ -8,11 +8,14 @@
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/grid/tria.h>
+#include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
+#include <deal.II/numerics/data_out.h>
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -124,18 +127,34 @@ namespace rbc_ifem
       const MPI_Comm                             communicator);
 
     /**
-     * Write NAME.vtu with the flux density @p flux (nodal, one vector per
-     * membrane, in FE_Q<2,3>(1) on @p dof_handlers) as "co_flux" and
-     * "co_flux_vector" on @p membranes; returns the file name.
+     * The constraints of P on @p dof_handler (an hp one too): hanging nodes,
+     * P = @p pressure on boundary @p pressure_boundary, and with a
+     * @p period P periodic between the end faces.
      */
-    static std::string
-    write_flux_map(
+    static void
+    make_pressure_constraints(const DoFHandler<3>         &dof_handler,
+                              const Mapping<3>            &mapping,
+                              const types::boundary_id     pressure_boundary,
+                              const double                 pressure,
+                              const std::optional<double> &period,
+                              AffineConstraints<double>   &constraints);
+
+    /**
+     * Write the P field of @p data_out (patches built) as NAME_CCCC.pvtu and
+     * the flux density @p flux (nodal, one vector per membrane, in
+     * FE_Q<2,3>(1) on @p dof_handlers) as "co_flux" and "co_flux_vector" on
+     * @p membranes as NAME_membranes_CCCC.vtu.
+     */
+    static OutputFiles
+    write_fields(
+      const DataOut<3>                                     &data_out,
       const std::vector<const Triangulation<2, 3> *>       &membranes,
       const MappingQ<2, 3>                                 &mapping,
       const std::vector<std::unique_ptr<DoFHandler<2, 3>>> &dof_handlers,
       const std::vector<Vector<double>>                    &flux,
       const std::string                                    &directory,
       const std::string                                    &name,
+      const unsigned int                                    counter,
       const MPI_Comm                                        communicator,
       const FieldData                                      &field_data);
 

@@ -99,7 +99,7 @@ namespace
      3,
      0.025,
      0.02},
-    {"cut cell Q2", DiffusionMethod::cut_cell, 2, 2, 1, 1.8, 3, 2e-3, 1e-3}};
+    {"cut cell Q2", DiffusionMethod::cut_cell, 2, 2, 1, 1.8, 3, 5e-4, 5e-4}};
 
   /// The error falls on every level at the order @p method promises, below
   /// @p finest on the last.

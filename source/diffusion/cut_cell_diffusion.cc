@@ -613,15 +613,6 @@ namespace rbc_ifem
     return dof_handler.n_dofs();
   }
 
-  unsigned int
-  CutCellDiffusion::n_cut_cells() const
-  {
-    unsigned int n = 0;
-    for (const auto &cell : mesh->active_cell_iterators())
-      n += is_cut(*classifier, cell);
-    return n;
-  }
-
   CutCellDiffusion::OutputFiles
   CutCellDiffusion::write_output(const std::string &directory,
                                  const std::string &name,

@@ -109,10 +109,6 @@ namespace rbc_ifem
     types::global_dof_index
     n_dofs() const override;
 
-    /// Cells of the diffusion mesh the membranes cut.
-    unsigned int
-    n_cut_cells() const;
-
     /**
      * P on the cells that reach into the plasma, with the signed distance
      * to the membranes as "membrane_distance" [µm] (> 0 in the plasma) and

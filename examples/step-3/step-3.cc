@@ -40,7 +40,10 @@ current_dm(const Parameters     &parameters,
            const MPI_Comm        communicator,
            TimerOutput          &timer)
 {
-  const auto                               surfaces = cells.current_surfaces();
+  // The membranes as they are now, and the mapping that curves them
+  // through their nodes.
+  const auto surfaces = cells.current_surfaces();
+  const auto mapping  = cells.surface_mapping(surfaces);
   std::vector<const Triangulation<2, 3> *> membranes;
   for (const auto &surface : surfaces)
     membranes.push_back(surface.get());
@@ -48,7 +51,7 @@ current_dm(const Parameters     &parameters,
                       parameters.mesh,
                       parameters.diffusion,
                       membranes,
-                      cells.surface_mapping(),
+                      mapping,
                       parameters.mesh.diffusion_band_refinements,
                       communicator,
                       timer)

@@ -206,10 +206,18 @@ namespace rbc_ifem
     return surfaces;
   }
 
-  const MappingQ<2, 3> &
-  CellPopulation::surface_mapping() const
+  DeformedSurfaceMapping
+  CellPopulation::surface_mapping(
+    const std::vector<std::unique_ptr<Triangulation<2, 3>>> &surfaces) const
   {
-    return flat_mapping;
+    std::vector<const Triangulation<2, 3> *> meshes;
+    std::vector<const Membrane *>            membranes;
+    for (unsigned int c = 0; c < size(); ++c)
+      {
+        meshes.push_back(surfaces[c].get());
+        membranes.push_back(cell_membranes[c].get());
+      }
+    return DeformedSurfaceMapping(meshes, membranes, x);
   }
 
   double

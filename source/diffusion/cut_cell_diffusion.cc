@@ -21,6 +21,7 @@
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -44,10 +45,10 @@ namespace rbc_ifem
     }
   } // namespace
 
-  MembranesShareCells::MembranesShareCells(
-    std::vector<unsigned int>             cells,
-    std::pair<unsigned int, unsigned int> membranes)
-    : std::runtime_error("two membranes share a cell of the diffusion mesh")
+  UnresolvedCutCells::UnresolvedCutCells(
+    std::vector<unsigned int>                                   cells,
+    const std::optional<std::pair<unsigned int, unsigned int>> &membranes)
+    : std::runtime_error("cut cells that the level set cannot resolve")
     , cells(std::move(cells))
     , membranes(membranes)
   {}
@@ -98,6 +99,8 @@ namespace rbc_ifem
     distance =
       std::make_unique<MembraneDistance>(membranes, membrane_mapping, period);
     compute_level_set();
+    if (ridge_refinement)
+      check_for_ridges();
     distribute_dofs();
     make_pressure_constraints(dof_handler,
                               mapping,
@@ -115,30 +118,19 @@ namespace rbc_ifem
     TimerOutput::Scope scope(timer, "diffusion: level set");
     level_set_dof_handler.reinit(*mesh);
     level_set_dof_handler.distribute_dofs(level_set_fe);
-    // Every rank classifies every cell (a shared mesh has no artificial
-    // cells) but needs the level set right only on the cells it owns and
-    // their neighbours: elsewhere it stays "inside a red cell".
     level_set.reinit(level_set_dof_handler.n_dofs());
     level_set = 1.;
-    std::vector<bool> done(level_set_dof_handler.n_dofs(), false);
-    FEValues<3>       fe_values(mapping,
-                          level_set_fe,
-                          Quadrature<3>(level_set_fe.get_unit_support_points()),
-                          update_quadrature_points);
-    std::vector<types::global_dof_index> dofs(level_set_fe.n_dofs_per_cell());
-    for (const auto &cell : level_set_dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned() || cell->is_ghost())
+    closest_normals.assign(level_set_dof_handler.n_dofs(), Tensor<1, 3>());
+    closest_membranes.assign(level_set_dof_handler.n_dofs(), 0);
+    const std::vector<std::optional<Point<3>>> nodes = level_set_nodes();
+    for (types::global_dof_index i = 0; i < nodes.size(); ++i)
+      if (nodes[i])
         {
-          fe_values.reinit(cell);
-          cell->get_dof_indices(dofs);
-          for (unsigned int i = 0; i < dofs.size(); ++i)
-            if (!done[dofs[i]])
-              {
-                level_set[dofs[i]] =
-                  -distance->closest_point(fe_values.quadrature_point(i))
-                     .signed_distance;
-                done[dofs[i]] = true;
-              }
+          const MembraneDistance::ClosestPoint closest =
+            distance->closest_point(*nodes[i]);
+          level_set[i]         = -closest.signed_distance;
+          closest_normals[i]   = closest.normal;
+          closest_membranes[i] = closest.membrane;
         }
     // Hanging values take the coarse side's, so that neighbours agree on
     // where the membrane is.
@@ -151,6 +143,102 @@ namespace rbc_ifem
       std::make_unique<NonMatching::MeshClassifier<3>>(level_set_dof_handler,
                                                        level_set);
     classifier->reclassify();
+  }
+
+  std::vector<std::optional<Point<3>>>
+  CutCellDiffusion::level_set_nodes() const
+  {
+    // Every rank classifies every cell (a shared mesh without artificial
+    // cells calls every other rank's cell a ghost) but needs the level set
+    // right only on the cells it owns and their neighbours (the ghost
+    // penalty's faces), whose hanging nodes take their values from the
+    // neighbours' neighbours: elsewhere it stays "inside a red cell".
+    const auto touching = [](const std::vector<bool> &vertices) {
+      return [&vertices](const auto &cell) {
+        for (const unsigned int v : cell->vertex_indices())
+          if (vertices[cell->vertex_index(v)])
+            return true;
+        return false;
+      };
+    };
+    const auto vertices_of = [this](const auto &in_set) {
+      std::vector<bool> vertices(mesh->n_vertices(), false);
+      for (const auto &cell : mesh->active_cell_iterators())
+        if (in_set(cell))
+          for (const unsigned int v : cell->vertex_indices())
+            vertices[cell->vertex_index(v)] = true;
+      return vertices;
+    };
+    const std::vector<bool> owned =
+      vertices_of([](const auto &cell) { return cell->is_locally_owned(); });
+    const std::vector<bool> neighbour_vertices = vertices_of(touching(owned));
+    const std::vector<bool> needed_vertices =
+      vertices_of(touching(neighbour_vertices));
+    const auto needed = touching(neighbour_vertices);
+    // A node shared by several cells is placed by the first of them in the
+    // mesh's order (the cells' mappings differ in the last digits): all of
+    // them share a vertex with the needed cells, so every rank places it
+    // alike, and the ranks agree to the last bit.
+    const auto placing = touching(needed_vertices);
+
+    std::vector<Point<3>> positions(level_set_dof_handler.n_dofs());
+    std::vector<bool>     placed(positions.size(), false),
+      wanted(positions.size(), false);
+    FEValues<3>                          fe_values(mapping,
+                          level_set_fe,
+                          Quadrature<3>(level_set_fe.get_unit_support_points()),
+                          update_quadrature_points);
+    std::vector<types::global_dof_index> dofs(level_set_fe.n_dofs_per_cell());
+    for (const auto &cell : level_set_dof_handler.active_cell_iterators())
+      if (placing(cell))
+        {
+          fe_values.reinit(cell);
+          cell->get_dof_indices(dofs);
+          const bool is_needed = needed(cell);
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            {
+              if (!placed[dofs[i]])
+                positions[dofs[i]] = fe_values.quadrature_point(i);
+              placed[dofs[i]] = true;
+              wanted[dofs[i]] = wanted[dofs[i]] || is_needed;
+            }
+        }
+    std::vector<std::optional<Point<3>>> nodes(positions.size());
+    for (types::global_dof_index i = 0; i < nodes.size(); ++i)
+      if (wanted[i])
+        nodes[i] = positions[i];
+    return nodes;
+  }
+
+  void
+  CutCellDiffusion::refine_ridges(const bool refine)
+  {
+    ridge_refinement = refine;
+  }
+
+  void
+  CutCellDiffusion::check_for_ridges() const
+  {
+    std::vector<unsigned int>            cells;
+    std::vector<types::global_dof_index> dofs(level_set_fe.n_dofs_per_cell());
+    for (const auto &cell : level_set_dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned() && is_cut(*classifier, cell))
+        {
+          cell->get_dof_indices(dofs);
+          const auto faces_away = [&](const types::global_dof_index i) {
+            return std::any_of(dofs.begin(), dofs.end(), [&](const auto j) {
+              return closest_membranes[i] == closest_membranes[j] &&
+                     closest_normals[i] * closest_normals[j] < 0.;
+            });
+          };
+          if (std::any_of(dofs.begin(), dofs.end(), faces_away))
+            cells.push_back(cell->active_cell_index());
+        }
+    std::vector<unsigned int> all_cells;
+    for (const auto &found : Utilities::MPI::all_gather(communicator, cells))
+      all_cells.insert(all_cells.end(), found.begin(), found.end());
+    if (!all_cells.empty())
+      throw UnresolvedCutCells(all_cells, std::nullopt);
   }
 
   void
@@ -236,7 +324,7 @@ namespace rbc_ifem
               shared_by = pair;
               break;
             }
-        throw MembranesShareCells(all_shared, shared_by);
+        throw UnresolvedCutCells(all_shared, shared_by);
       }
   }
 

@@ -65,7 +65,8 @@ namespace rbc_ifem
     /// The CO diffusion problem of @p d, set up on @p mesh with the
     /// membranes @p surfaces: everything before the assembly. A mesh too
     /// coarse for the membranes is an InputError naming @p band_refinements,
-    /// the refinements of the mesh around them.
+    /// the refinements of the mesh around them. Cut cells ask for
+    /// refinement where the distance has a ridge if @p refine_ridges.
     std::unique_ptr<DiffusionSolver>
     set_up_diffusion(const parallel::shared::Triangulation<3>       &mesh,
                      const GeometryParameters                       &geometry,
@@ -73,6 +74,7 @@ namespace rbc_ifem
                      const std::vector<const Triangulation<2, 3> *> &surfaces,
                      const MappingQ<2, 3>                           &mapping,
                      const unsigned int band_refinements,
+                     const bool         refine_ridges,
                      const MPI_Comm     communicator,
                      TimerOutput       &timer)
     {
@@ -81,13 +83,17 @@ namespace rbc_ifem
       };
       std::unique_ptr<DiffusionSolver> diffusion;
       if (d.method == DiffusionMethod::cut_cell)
-        diffusion = std::make_unique<CutCellDiffusion>(
-          d,
-          permeability,
-          DiffusionBoundary::alveolar_surface,
-          communicator,
-          timer,
-          geometry.period());
+        {
+          auto cut_cells = std::make_unique<CutCellDiffusion>(
+            d,
+            permeability,
+            DiffusionBoundary::alveolar_surface,
+            communicator,
+            timer,
+            geometry.period());
+          cut_cells->refine_ridges(refine_ridges);
+          diffusion = std::move(cut_cells);
+        }
       else
         diffusion =
           std::make_unique<CODiffusion>(d,
@@ -141,9 +147,12 @@ namespace rbc_ifem
       {
         make_uptake_mesh(
           mesh, geometry, mesh_parameters, surfaces, band_refinements, timer);
-        // Cut cells: refine where two membranes share a mesh cell, until
-        // none does.
-        for (unsigned int refinement = 0;; ++refinement)
+        // Cut cells: refine where two membranes share a mesh cell, or the
+        // distance to them has a ridge in one, until none does; after the
+        // last refinement allowed a shared cell is an error, a ridge is
+        // left as the mesh resolves it.
+        bool refine_ridges = true;
+        for (unsigned int refinement = 0;;)
           try
             {
               diffusion = set_up_diffusion(mesh,
@@ -152,26 +161,33 @@ namespace rbc_ifem
                                            surfaces,
                                            mapping,
                                            band_refinements,
+                                           refine_ridges,
                                            communicator,
                                            timer);
               return;
             }
-          catch (const MembranesShareCells &e)
+          catch (const UnresolvedCutCells &e)
             {
-              if (refinement == mesh_parameters.diffusion_gap_refinements)
-                throw InputError(
-                  "Layout",
-                  "cells " + std::to_string(e.membranes.first) + " and " +
-                    std::to_string(e.membranes.second),
-                  "these two membranes pass through one cell of the "
-                  "diffusion mesh after " +
-                    std::to_string(refinement) +
-                    " local refinements (they are closer than the mesh "
-                    "resolves): raise Mesh/Diffusion gap refinements or "
-                    "Mesh/Diffusion band refinements, or move the cells "
-                    "apart.");
               diffusion.reset();
+              if (refinement == mesh_parameters.diffusion_gap_refinements)
+                {
+                  if (e.membranes)
+                    throw InputError(
+                      "Layout",
+                      "cells " + std::to_string(e.membranes->first) + " and " +
+                        std::to_string(e.membranes->second),
+                      "these two membranes pass through one cell of the "
+                      "diffusion mesh after " +
+                        std::to_string(refinement) +
+                        " local refinements (they are closer than the mesh "
+                        "resolves): raise Mesh/Diffusion gap refinements or "
+                        "Mesh/Diffusion band refinements, or move the cells "
+                        "apart.");
+                  refine_ridges = false;
+                  continue;
+                }
               refine_cells_and_neighbors(mesh, e.cells);
+              ++refinement;
             }
       }
 

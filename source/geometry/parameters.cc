@@ -101,10 +101,13 @@ namespace rbc_ifem
                   diffusion_gap_refinements,
                   "Diffusion/Method = cut cell only: where two membranes "
                   "pass through one cell of the diffusion mesh (a gap "
-                  "narrower than the mesh), that cell and its neighbours are "
-                  "refined once more, up to this many times; if two "
-                  "membranes still share a cell the run stops with an "
-                  "error. 0 turns the local refinement off.",
+                  "narrower than the mesh), or a cell reaches across a part "
+                  "of one red cell thinner than the mesh (the dimple, a "
+                  "fold), that cell and its neighbours are refined once "
+                  "more, up to this many times; if two membranes still "
+                  "share a cell the run stops with an error, a thin part is "
+                  "left as resolved as it is. 0 turns the local refinement "
+                  "off.",
                   Patterns::Integer(0, 6));
     add_parameter(prm,
                   "Band width",

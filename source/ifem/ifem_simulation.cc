@@ -445,11 +445,12 @@ namespace rbc_ifem
   {
     TimerOutput::Scope scope(timer, "diffusion: input check");
     const auto         surfaces = cells.current_surfaces();
+    const auto         mapping  = cells.surface_mapping(surfaces);
     check_uptake_meshes(parameters.geometry,
                         parameters.mesh,
                         parameters.diffusion,
                         pointers_to(surfaces),
-                        cells.surface_mapping(),
+                        mapping,
                         parameters.mesh.diffusion_band_refinements,
                         communicator,
                         timer);
@@ -459,13 +460,14 @@ namespace rbc_ifem
   IFEMSimulation::solve_uptake(const unsigned int counter)
   {
     const auto         surfaces  = cells.current_surfaces();
+    const auto         mapping   = cells.surface_mapping(surfaces);
     const std::string &directory = parameters.output_directory;
     const Uptake       uptake =
       rbc_ifem::solve_uptake(parameters.geometry,
                              parameters.mesh,
                              parameters.diffusion,
                              pointers_to(surfaces),
-                             cells.surface_mapping(),
+                             mapping,
                              parameters.mesh.diffusion_band_refinements,
                              communicator,
                              timer,

@@ -5,6 +5,7 @@
 #include <rbc_ifem/geometry/cell_membranes.h>
 #include <rbc_ifem/geometry/cell_placement.h>
 #include <rbc_ifem/geometry/parameters.h>
+#include <rbc_ifem/membrane/deformed_surface_mapping.h>
 #include <rbc_ifem/membrane/membrane.h>
 #include <rbc_ifem/membrane/parameters.h>
 
@@ -126,13 +127,21 @@ namespace rbc_ifem
     shapes() const;
 
     /**
-     * The current surfaces, flat-sided between the nodes, for the CO
-     * diffusion solve (see Membrane::build_surface), and their mapping.
+     * The current surfaces, for the CO diffusion solve: copies of the
+     * reference meshes with the current vertices (see
+     * Membrane::build_surface), flat-sided between them.
      */
     std::vector<std::unique_ptr<Triangulation<2, 3>>>
     current_surfaces() const;
-    const MappingQ<2, 3> &
-    surface_mapping() const;
+
+    /**
+     * The mapping that curves @p surfaces, the current_surfaces(), as the
+     * uptake solve sees them: the reference shape plus the displacement
+     * (DeformedSurfaceMapping).
+     */
+    DeformedSurfaceMapping
+    surface_mapping(
+      const std::vector<std::unique_ptr<Triangulation<2, 3>>> &surfaces) const;
 
     /**
      * The largest distance between neighbouring membrane points (the

@@ -26,21 +26,32 @@
 namespace rbc_ifem
 {
   /**
-   * Two membranes pass through one cell of the diffusion mesh: the gap
-   * between them is narrower than the mesh, and the level set cannot tell
-   * them apart. Thrown by CutCellDiffusion::setup() on every rank, with
-   * every such cell, so that the caller can refine them and try again.
+   * Cut cells of the diffusion mesh that the level set cannot resolve,
+   * thrown by CutCellDiffusion::setup() on every rank, with every such
+   * cell, so that the caller can refine them and try again:
+   * - two membranes pass through one cell: the gap between them is
+   *   narrower than the mesh, and the level set cannot tell them apart
+   *   (membranes names two of them);
+   * - the distance to a membrane has a ridge inside a cut cell, where two
+   *   sides of the membrane are equally far (the cell reaches across a thin
+   *   part of the red cell, the biconcave dimple or a parachute's fold): the
+   *   polynomial level set smooths the ridge's kink and moves the membrane.
+   *   (The ridges between two membranes, in the plasma, are left alone:
+   *   refining every gap costs three times the DoFs of seven cells for a
+   *   quarter of a percent of DM.)
    */
-  class MembranesShareCells : public std::runtime_error
+  class UnresolvedCutCells : public std::runtime_error
   {
   public:
-    MembranesShareCells(std::vector<unsigned int>             cells,
-                        std::pair<unsigned int, unsigned int> membranes);
+    UnresolvedCutCells(
+      std::vector<unsigned int>                                   cells,
+      const std::optional<std::pair<unsigned int, unsigned int>> &membranes);
 
     /// Active cell indices of the mesh cells, on every rank.
     const std::vector<unsigned int> cells;
-    /// Two of the membranes (indices into the membranes) that share one.
-    const std::pair<unsigned int, unsigned int> membranes;
+    /// Two membranes (indices into the membranes) that share a cell, if
+    /// any do.
+    const std::optional<std::pair<unsigned int, unsigned int>> membranes;
   };
 
   /**
@@ -92,12 +103,22 @@ namespace rbc_ifem
      * Build the level set of the membranes, classify the cells, distribute
      * the DoFs on the cells that reach into the plasma, find each surface
      * quadrature point's membrane. Throws InputError if a membrane leaves
-     * the lumen, MembranesShareCells if two pass through one mesh cell.
+     * the lumen, UnresolvedCutCells if two pass through one mesh cell or
+     * (unless refine_ridges(false)) the distance has a ridge in a cut cell.
      */
     void
     setup(const parallel::shared::Triangulation<3>       &mesh,
           const std::vector<const Triangulation<2, 3> *> &membranes,
           const MappingQ<2, 3> &membrane_mapping) override;
+
+    /**
+     * Whether setup() asks for the cut cells with a ridge of the distance
+     * to be refined (default true). The caller switches it off after the
+     * last refinement it allows: the ridges are then resolved as well as
+     * the mesh resolves them.
+     */
+    void
+    refine_ridges(const bool refine);
 
     void
     assemble() override;
@@ -126,6 +147,15 @@ namespace rbc_ifem
 
     void
     compute_level_set();
+    /// The position of each level set node this rank needs (those of the
+    /// cells it owns and of the cells that share a vertex with them).
+    std::vector<std::optional<Point<3>>>
+    level_set_nodes() const;
+    /// Throw UnresolvedCutCells for the cut cells that the distance has a
+    /// ridge in: two of their level set nodes whose closest points on one
+    /// membrane face opposite ways.
+    void
+    check_for_ridges() const;
     void
     distribute_dofs();
     void
@@ -182,7 +212,12 @@ namespace rbc_ifem
     const FE_Q<3>            level_set_fe;
     DoFHandler<3>            level_set_dof_handler;
     /// φ = −(signed distance): < 0 in the plasma (deal.II's "inside").
-    Vector<double>                                  level_set;
+    Vector<double> level_set;
+    /// The membrane closest to each level set node, and the outward normal
+    /// at the closest point.
+    std::vector<unsigned int>                       closest_membranes;
+    std::vector<Tensor<1, 3>>                       closest_normals;
+    bool                                            ridge_refinement = true;
     std::unique_ptr<NonMatching::MeshClassifier<3>> classifier;
 
     hp::FECollection<3>       fe_collection; ///< FE_Q(k), FE_Nothing

@@ -53,8 +53,14 @@ namespace
     const MappingQ<2, 3>             membrane_mapping(2);
     std::unique_ptr<DiffusionSolver> diffusion;
     if (parameters.method == DiffusionMethod::cut_cell)
-      diffusion = std::make_unique<CutCellDiffusion>(
-        parameters, permeability, pressure_boundary, MPI_COMM_WORLD, timer);
+      {
+        auto cut_cells = std::make_unique<CutCellDiffusion>(
+          parameters, permeability, pressure_boundary, MPI_COMM_WORLD, timer);
+        // The meshes are the study's: no refinement where a coarse cell
+        // reaches across the tube's or the sphere's centre.
+        cut_cells->refine_ridges(false);
+        diffusion = std::move(cut_cells);
+      }
     else
       diffusion = std::make_unique<CODiffusion>(
         parameters, permeability, pressure_boundary, MPI_COMM_WORLD, timer);

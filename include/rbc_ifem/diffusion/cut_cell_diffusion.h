@@ -147,8 +147,8 @@ namespace rbc_ifem
 
     void
     compute_level_set();
-    /// The position of each level set node this rank needs (those of the
-    /// cells it owns and of the cells that share a vertex with them).
+    /// The position of each level set node this rank needs: those of the
+    /// cells it owns and of two layers of cells around them.
     std::vector<std::optional<Point<3>>>
     level_set_nodes() const;
     /// Throw UnresolvedCutCells for the cut cells that the distance has a

@@ -170,16 +170,21 @@ namespace rbc_ifem
   {}
 
   void
-  CODiffusion::setup(const parallel::shared::Triangulation<3>       &mesh,
+  CODiffusion::setup(const parallel::TriangulationBase<3>           &mesh,
                      const std::vector<const Triangulation<2, 3> *> &membranes,
                      const MappingQ<2, 3> &membrane_mapping)
   {
     TimerOutput::Scope scope(timer, "diffusion: setup");
-    this->mesh             = &mesh;
+    this->mesh =
+      dynamic_cast<const parallel::shared::Triangulation<3> *>(&mesh);
+    AssertThrow(this->mesh != nullptr,
+                ExcMessage("CODiffusion needs a parallel::shared::"
+                           "Triangulation: every rank locates every membrane "
+                           "point in it."));
     this->membranes        = membranes;
     this->membrane_mapping = &membrane_mapping;
 
-    dof_handler.reinit(mesh);
+    dof_handler.reinit(*this->mesh);
     dof_handler.distribute_dofs(fe);
     owned_dofs = dof_handler.locally_owned_dofs();
     make_pressure_constraints(dof_handler,

@@ -23,6 +23,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <set>
 #include <sstream>
 
 namespace rbc_ifem
@@ -36,6 +38,17 @@ namespace rbc_ifem
       nothing  = 1  ///< cells wholly inside a red cell
     };
 
+    /// What every rank of @p communicator has in @p local, in rank order.
+    template <typename T>
+    std::vector<T>
+    gather(const std::vector<T> &local, const MPI_Comm communicator)
+    {
+      std::vector<T> all;
+      for (const auto &found : Utilities::MPI::all_gather(communicator, local))
+        all.insert(all.end(), found.begin(), found.end());
+      return all;
+    }
+
     bool
     is_cut(const NonMatching::MeshClassifier<3>           &classifier,
            const typename Triangulation<3>::cell_iterator &cell)
@@ -46,7 +59,7 @@ namespace rbc_ifem
   } // namespace
 
   UnresolvedCutCells::UnresolvedCutCells(
-    std::vector<unsigned int>                                   cells,
+    std::vector<CellId>                                         cells,
     const std::optional<std::pair<unsigned int, unsigned int>> &membranes)
     : std::runtime_error("cut cells that the level set cannot resolve")
     , cells(std::move(cells))
@@ -88,7 +101,7 @@ namespace rbc_ifem
 
   void
   CutCellDiffusion::setup(
-    const parallel::shared::Triangulation<3>       &mesh,
+    const parallel::TriangulationBase<3>           &mesh,
     const std::vector<const Triangulation<2, 3> *> &membranes,
     const MappingQ<2, 3>                           &membrane_mapping)
   {
@@ -118,26 +131,33 @@ namespace rbc_ifem
     TimerOutput::Scope scope(timer, "diffusion: level set");
     level_set_dof_handler.reinit(*mesh);
     level_set_dof_handler.distribute_dofs(level_set_fe);
-    level_set.reinit(level_set_dof_handler.n_dofs());
-    level_set = 1.;
-    closest_normals.assign(level_set_dof_handler.n_dofs(), Tensor<1, 3>());
-    closest_membranes.assign(level_set_dof_handler.n_dofs(), 0);
-    const std::vector<std::optional<Point<3>>> nodes = level_set_nodes();
-    for (types::global_dof_index i = 0; i < nodes.size(); ++i)
-      if (nodes[i])
-        {
-          const MembraneDistance::ClosestPoint closest =
-            distance->closest_point(*nodes[i]);
-          level_set[i]         = -closest.signed_distance;
-          closest_normals[i]   = closest.normal;
-          closest_membranes[i] = closest.membrane;
-        }
+    const IndexSet owned = level_set_dof_handler.locally_owned_dofs();
+    IndexSet       relevant;
+    DoFTools::extract_locally_relevant_dofs(level_set_dof_handler, relevant);
+
+    // Every node of an owned cell is computed here, those other ranks own
+    // too: the ridge check needs their closest points.
+    LinearAlgebra::distributed::Vector<double> owned_values(owned,
+                                                            communicator);
+    closest_points.clear();
+    for (const auto &[dof, position] : level_set_nodes())
+      {
+        const MembraneDistance::ClosestPoint closest =
+          distance->closest_point(position);
+        if (owned.is_element(dof))
+          owned_values[dof] = -closest.signed_distance;
+        closest_points.emplace(dof, closest);
+      }
     // Hanging values take the coarse side's, so that neighbours agree on
     // where the membrane is.
-    AffineConstraints<double> hanging;
+    AffineConstraints<double> hanging(relevant);
     DoFTools::make_hanging_node_constraints(level_set_dof_handler, hanging);
     hanging.close();
-    hanging.distribute(level_set);
+    hanging.distribute(owned_values);
+    level_set.reinit(owned, relevant, communicator);
+    for (const auto dof : owned)
+      level_set[dof] = owned_values[dof];
+    level_set.update_ghost_values();
 
     classifier =
       std::make_unique<NonMatching::MeshClassifier<3>>(level_set_dof_handler,
@@ -145,68 +165,45 @@ namespace rbc_ifem
     classifier->reclassify();
   }
 
-  std::vector<std::optional<Point<3>>>
+  std::vector<std::pair<types::global_dof_index, Point<3>>>
   CutCellDiffusion::level_set_nodes() const
   {
-    // Every rank classifies every cell (a shared mesh without artificial
-    // cells calls every other rank's cell a ghost) but needs the level set
-    // right only on the cells it owns and their neighbours (the ghost
-    // penalty's faces), whose hanging nodes take their values from the
-    // neighbours' neighbours: elsewhere it stays "inside a red cell".
-    const auto touching = [](const std::vector<bool> &vertices) {
-      return [&vertices](const auto &cell) {
-        for (const unsigned int v : cell->vertex_indices())
-          if (vertices[cell->vertex_index(v)])
-            return true;
-        return false;
-      };
-    };
-    const auto vertices_of = [this](const auto &in_set) {
-      std::vector<bool> vertices(mesh->n_vertices(), false);
-      for (const auto &cell : mesh->active_cell_iterators())
-        if (in_set(cell))
-          for (const unsigned int v : cell->vertex_indices())
-            vertices[cell->vertex_index(v)] = true;
-      return vertices;
-    };
-    const std::vector<bool> owned =
-      vertices_of([](const auto &cell) { return cell->is_locally_owned(); });
-    const std::vector<bool> neighbour_vertices = vertices_of(touching(owned));
-    const std::vector<bool> needed_vertices =
-      vertices_of(touching(neighbour_vertices));
-    const auto needed = touching(neighbour_vertices);
-    // A node shared by several cells is placed by the first of them in the
-    // mesh's order (the cells' mappings differ in the last digits): all of
-    // them share a vertex with the needed cells, so every rank places it
-    // alike, and the ranks agree to the last bit.
-    const auto placing = touching(needed_vertices);
-
-    std::vector<Point<3>> positions(level_set_dof_handler.n_dofs());
-    std::vector<bool>     placed(positions.size(), false),
-      wanted(positions.size(), false);
+    // Every cell that holds a node of an owned cell shares a vertex with
+    // it, so it is owned or a ghost here.
+    std::map<types::global_dof_index, std::pair<CellId, Point<3>>> placed;
+    std::set<types::global_dof_index>                              wanted;
     FEValues<3>                          fe_values(mapping,
                           level_set_fe,
                           Quadrature<3>(level_set_fe.get_unit_support_points()),
                           update_quadrature_points);
     std::vector<types::global_dof_index> dofs(level_set_fe.n_dofs_per_cell());
     for (const auto &cell : level_set_dof_handler.active_cell_iterators())
-      if (placing(cell))
+      if (cell->is_locally_owned())
         {
-          fe_values.reinit(cell);
           cell->get_dof_indices(dofs);
-          const bool is_needed = needed(cell);
-          for (unsigned int i = 0; i < dofs.size(); ++i)
-            {
-              if (!placed[dofs[i]])
-                positions[dofs[i]] = fe_values.quadrature_point(i);
-              placed[dofs[i]] = true;
-              wanted[dofs[i]] = wanted[dofs[i]] || is_needed;
-            }
+          wanted.insert(dofs.begin(), dofs.end());
         }
-    std::vector<std::optional<Point<3>>> nodes(positions.size());
-    for (types::global_dof_index i = 0; i < nodes.size(); ++i)
-      if (wanted[i])
-        nodes[i] = positions[i];
+    for (const auto &cell : level_set_dof_handler.active_cell_iterators())
+      if (!cell->is_artificial())
+        {
+          cell->get_dof_indices(dofs);
+          bool evaluated = false;
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            if (wanted.count(dofs[i]) > 0)
+              {
+                const auto found = placed.find(dofs[i]);
+                if (found != placed.end() && found->second.first < cell->id())
+                  continue;
+                if (!evaluated)
+                  fe_values.reinit(cell);
+                evaluated       = true;
+                placed[dofs[i]] = {cell->id(), fe_values.quadrature_point(i)};
+              }
+        }
+    std::vector<std::pair<types::global_dof_index, Point<3>>> nodes;
+    nodes.reserve(placed.size());
+    for (const auto &[dof, placement] : placed)
+      nodes.emplace_back(dof, placement.second);
     return nodes;
   }
 
@@ -219,24 +216,23 @@ namespace rbc_ifem
   void
   CutCellDiffusion::check_for_ridges() const
   {
-    std::vector<unsigned int>            cells;
+    std::vector<CellId>                  cells;
     std::vector<types::global_dof_index> dofs(level_set_fe.n_dofs_per_cell());
     for (const auto &cell : level_set_dof_handler.active_cell_iterators())
       if (cell->is_locally_owned() && is_cut(*classifier, cell))
         {
           cell->get_dof_indices(dofs);
           const auto faces_away = [&](const types::global_dof_index i) {
+            const MembraneDistance::ClosestPoint &a = closest_points.at(i);
             return std::any_of(dofs.begin(), dofs.end(), [&](const auto j) {
-              return closest_membranes[i] == closest_membranes[j] &&
-                     closest_normals[i] * closest_normals[j] < 0.;
+              const MembraneDistance::ClosestPoint &b = closest_points.at(j);
+              return a.membrane == b.membrane && a.normal * b.normal < 0.;
             });
           };
           if (std::any_of(dofs.begin(), dofs.end(), faces_away))
-            cells.push_back(cell->active_cell_index());
+            cells.push_back(cell->id());
         }
-    std::vector<unsigned int> all_cells;
-    for (const auto &found : Utilities::MPI::all_gather(communicator, cells))
-      all_cells.insert(all_cells.end(), found.begin(), found.end());
+    const std::vector<CellId> all_cells = gather(cells, communicator);
     if (!all_cells.empty())
       throw UnresolvedCutCells(all_cells, std::nullopt);
   }
@@ -270,7 +266,7 @@ namespace rbc_ifem
     // [1 + m] the number of surface points on membrane m; and the cut cells
     // that two membranes share.
     std::vector<unsigned int>             findings(1 + membranes.size(), 0);
-    std::vector<unsigned int>             shared_cells;
+    std::vector<CellId>                   shared_cells;
     std::pair<unsigned int, unsigned int> shared_by{0, 0};
     surface_points.clear();
     for (const auto &cell : dof_handler.active_cell_iterators())
@@ -291,7 +287,7 @@ namespace rbc_ifem
           for (const auto &point : points)
             if (point.membrane != points.front().membrane)
               {
-                shared_cells.push_back(cell->active_cell_index());
+                shared_cells.push_back(cell->id());
                 shared_by = {std::min(point.membrane, points.front().membrane),
                              std::max(point.membrane, points.front().membrane)};
                 break;
@@ -310,10 +306,7 @@ namespace rbc_ifem
                          "this membrane cuts no cell of the diffusion mesh: "
                          "it lies outside the capillary, or within one "
                          "cell of the mesh.");
-    std::vector<unsigned int> all_shared;
-    for (const auto &cells :
-         Utilities::MPI::all_gather(communicator, shared_cells))
-      all_shared.insert(all_shared.end(), cells.begin(), cells.end());
+    const std::vector<CellId> all_shared = gather(shared_cells, communicator);
     if (!all_shared.empty())
       {
         // The pair from the lowest rank that found one.
@@ -357,9 +350,16 @@ namespace rbc_ifem
   void
   CutCellDiffusion::setup_matrix()
   {
+    // A constrained node of a ghost cell can hang on nodes this rank does not
+    // see: the rows it writes are those too.
+    IndexSet written_rows = relevant_dofs;
+    for (const auto &line : constraints.get_lines())
+      for (const auto &[dof, weight] : line.entries)
+        written_rows.add_index(dof);
+    written_rows.compress();
     TrilinosWrappers::SparsityPattern pattern(owned_dofs,
                                               owned_dofs,
-                                              relevant_dofs,
+                                              written_rows,
                                               communicator);
     DoFTools::make_sparsity_pattern(dof_handler,
                                     pattern,
@@ -711,8 +711,10 @@ namespace rbc_ifem
     Vector<float>      material_id(mesh->n_active_cells());
     for (const auto &cell : mesh->active_cell_iterators())
       material_id[cell->active_cell_index()] = cell->material_id();
-    Vector<double> membrane_distance(level_set);
+    LinearAlgebra::distributed::Vector<double> membrane_distance(level_set);
+    membrane_distance.zero_out_ghost_values();
     membrane_distance *= -1.;
+    membrane_distance.update_ghost_values();
 
     DataOut<3> data_out;
     data_out.set_cell_selection(

@@ -175,6 +175,14 @@ namespace rbc_ifem
                                           ends);
         DoFTools::make_periodicity_constraints<3, 3>(ends, constraints);
       }
+    // On a distributed mesh a ghost cell's nodes can hang on a cell this
+    // rank does not see, and the cut cells' ghost penalty reaches across to
+    // them: each such constraint comes from the rank that owns the node.
+    if (dynamic_cast<const parallel::DistributedTriangulationBase<3> *>(
+          &dof_handler.get_triangulation()) != nullptr)
+      constraints.make_consistent_in_parallel(dof_handler.locally_owned_dofs(),
+                                              relevant_dofs,
+                                              dof_handler.get_communicator());
     constraints.close();
   }
 

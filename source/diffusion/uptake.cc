@@ -6,7 +6,10 @@
 #include <rbc_ifem/diffusion/uptake.h>
 #include <rbc_ifem/geometry/capillary_mesh.h>
 
+#include <deal.II/distributed/fully_distributed_tria.h>
 #include <deal.II/distributed/shared_tria.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria_description.h>
 
 #include <iomanip>
 #include <memory>
@@ -16,50 +19,140 @@ namespace rbc_ifem
 {
   namespace
   {
-    /// The diffusion mesh of the capillary of @p geometry, refined
-    /// @p band_refinements times within Mesh/Band width of the vertices of
-    /// @p surfaces.
+    /// Refine the cells @p cells of @p mesh and their face neighbours.
     void
-    make_uptake_mesh(parallel::shared::Triangulation<3> &mesh,
-                     const GeometryParameters           &geometry,
-                     const MeshParameters               &mesh_parameters,
-                     const std::vector<const Triangulation<2, 3> *> &surfaces,
-                     const unsigned int band_refinements,
-                     TimerOutput       &timer)
+    refine_cells_and_neighbors(Triangulation<3>          &mesh,
+                               const std::vector<CellId> &cells)
     {
-      TimerOutput::Scope    scope(timer, "diffusion mesh");
-      std::vector<Point<3>> band_points;
-      for (const auto *surface : surfaces)
-        band_points.insert(band_points.end(),
-                           surface->get_vertices().begin(),
-                           surface->get_vertices().end());
-      create_diffusion_mesh(mesh,
-                            geometry,
-                            mesh_parameters.diffusion_global_refinements);
-      refine_near_points(mesh,
-                         points_in_segment(band_points, geometry.period()),
-                         mesh_parameters.band_width,
-                         band_refinements);
+      for (const CellId &id : cells)
+        {
+          const auto cell = mesh.create_cell_iterator(id);
+          cell->set_refine_flag();
+          for (const unsigned int f : cell->face_indices())
+            if (!cell->at_boundary(f) && cell->neighbor(f)->is_active())
+              cell->neighbor(f)->set_refine_flag();
+        }
+      mesh.execute_coarsening_and_refinement();
     }
 
-    /// Refine the active cells @p cells of @p mesh and their face
-    /// neighbours (the same on every rank: the indices are).
-    void
-    refine_cells_and_neighbors(parallel::shared::Triangulation<3> &mesh,
-                               const std::vector<unsigned int>    &cells)
+    /**
+     * What the uptake mesh is: the capillary's diffusion mesh
+     * (Mesh/Diffusion global refinements), refined @p band_refinements times
+     * within Mesh/Band width of the vertices of @p surfaces, then each of
+     * @p refinements in turn (cells that the level set could not resolve,
+     * refined with their neighbours).
+     */
+    struct UptakeMeshRecipe
     {
-      std::vector<bool> flagged(mesh.n_active_cells(), false);
-      for (const unsigned int index : cells)
-        flagged[index] = true;
+      const GeometryParameters                       &geometry;
+      const MeshParameters                           &mesh_parameters;
+      const std::vector<const Triangulation<2, 3> *> &surfaces;
+      const unsigned int                              band_refinements;
+      std::vector<std::vector<CellId>>                refinements;
+
+      /// Build it on @p mesh, a serial or a shared triangulation.
+      void
+      make(Triangulation<3> &mesh) const
+      {
+        std::vector<Point<3>> band_points;
+        for (const auto *surface : surfaces)
+          band_points.insert(band_points.end(),
+                             surface->get_vertices().begin(),
+                             surface->get_vertices().end());
+        create_diffusion_mesh(mesh,
+                              geometry,
+                              mesh_parameters.diffusion_global_refinements);
+        if (geometry.period())
+          add_end_periodicity(mesh);
+        refine_near_points(mesh,
+                           points_in_segment(band_points, geometry.period()),
+                           mesh_parameters.band_width,
+                           band_refinements);
+        for (const std::vector<CellId> &cells : refinements)
+          refine_cells_and_neighbors(mesh, cells);
+      }
+
+      /// The periodic segment's end faces, matched on @p mesh.
+      static void
+      add_end_periodicity(Triangulation<3> &mesh)
+      {
+        std::vector<
+          GridTools::PeriodicFacePair<Triangulation<3>::cell_iterator>>
+          ends;
+        GridTools::collect_periodic_faces(mesh,
+                                          DiffusionBoundary::inlet_end,
+                                          DiffusionBoundary::outlet_end,
+                                          /*direction=*/0,
+                                          ends);
+        mesh.add_periodicity(ends);
+      }
+    };
+
+    /**
+     * The uptake mesh of @p recipe on @p communicator: for cut cells fully
+     * distributed (rank 0 builds it and sends each rank its cells and their
+     * ghost layer, partitioned by METIS), for the multiplier shared (every
+     * rank locates every membrane point).
+     */
+    std::unique_ptr<parallel::TriangulationBase<3>>
+    make_uptake_mesh(const UptakeMeshRecipe &recipe,
+                     const DiffusionMethod   method,
+                     const MPI_Comm          communicator,
+                     TimerOutput            &timer)
+    {
+      TimerOutput::Scope scope(timer, "diffusion mesh");
+      if (method != DiffusionMethod::cut_cell)
+        {
+          auto mesh = std::make_unique<parallel::shared::Triangulation<3>>(
+            communicator,
+            Triangulation<3>::none,
+            false,
+            parallel::shared::Triangulation<3>::partition_metis);
+          recipe.make(*mesh);
+          return mesh;
+        }
+      const unsigned int n_ranks =
+        Utilities::MPI::n_mpi_processes(communicator);
+      // Hanging nodes need the description's levels, which limit the level
+      // difference at vertices to one.
+      const auto description = TriangulationDescription::Utilities::
+        create_description_from_triangulation_in_groups<3, 3>(
+          [&recipe](Triangulation<3> &serial) { recipe.make(serial); },
+          [n_ranks](Triangulation<3> &serial,
+                    const MPI_Comm &,
+                    const unsigned int) {
+            GridTools::partition_triangulation(n_ranks, serial);
+          },
+          communicator,
+          n_ranks,
+          Triangulation<3>::none,
+          TriangulationDescription::Settings::construct_multigrid_hierarchy);
+      auto mesh =
+        std::make_unique<parallel::fullydistributed::Triangulation<3>>(
+          communicator);
+      create_capillary_mesh(*mesh, description);
+      if (recipe.geometry.period())
+        UptakeMeshRecipe::add_end_periodicity(*mesh);
+      return mesh;
+    }
+
+    /// The vertices of @p mesh on all ranks: each counted by the lowest rank
+    /// whose cells hold it.
+    types::global_vertex_index
+    n_global_vertices(const parallel::TriangulationBase<3> &mesh)
+    {
+      std::vector<types::subdomain_id> lowest(mesh.n_vertices(),
+                                              numbers::invalid_subdomain_id);
       for (const auto &cell : mesh.active_cell_iterators())
-        if (flagged[cell->active_cell_index()])
-          {
-            cell->set_refine_flag();
-            for (const unsigned int f : cell->face_indices())
-              if (!cell->at_boundary(f) && cell->neighbor(f)->is_active())
-                cell->neighbor(f)->set_refine_flag();
-          }
-      mesh.execute_coarsening_and_refinement();
+        if (!cell->is_artificial())
+          for (const unsigned int v : cell->vertex_indices())
+            lowest[cell->vertex_index(v)] =
+              std::min(lowest[cell->vertex_index(v)], cell->subdomain_id());
+      const types::subdomain_id  rank = mesh.locally_owned_subdomain();
+      types::global_vertex_index n    = 0;
+      for (const types::subdomain_id owner : lowest)
+        n += (owner == rank);
+      return Utilities::MPI::sum(n, mesh.get_communicator());
     }
 
     /// The CO diffusion problem of @p d, set up on @p mesh with the
@@ -68,7 +161,7 @@ namespace rbc_ifem
     /// the refinements of the mesh around them. Cut cells ask for
     /// refinement where the distance has a ridge if @p refine_ridges.
     std::unique_ptr<DiffusionSolver>
-    set_up_diffusion(const parallel::shared::Triangulation<3>       &mesh,
+    set_up_diffusion(const parallel::TriangulationBase<3>           &mesh,
                      const GeometryParameters                       &geometry,
                      const DiffusionParameters                      &d,
                      const std::vector<const Triangulation<2, 3> *> &surfaces,
@@ -140,22 +233,19 @@ namespace rbc_ifem
                   const unsigned int band_refinements,
                   const MPI_Comm     communicator,
                   TimerOutput       &timer)
-        : mesh(communicator,
-               Triangulation<3>::none,
-               false,
-               parallel::shared::Triangulation<3>::partition_metis)
       {
-        make_uptake_mesh(
-          mesh, geometry, mesh_parameters, surfaces, band_refinements, timer);
+        UptakeMeshRecipe recipe{
+          geometry, mesh_parameters, surfaces, band_refinements, {}};
+        mesh = make_uptake_mesh(recipe, d.method, communicator, timer);
         // Cut cells: refine where two membranes share a mesh cell, or the
         // distance to them has a ridge in one, until none does; after the
         // last refinement allowed a shared cell is an error, a ridge is
         // left as the mesh resolves it.
         bool refine_ridges = true;
-        for (unsigned int refinement = 0;;)
+        for (;;)
           try
             {
-              diffusion = set_up_diffusion(mesh,
+              diffusion = set_up_diffusion(*mesh,
                                            geometry,
                                            d,
                                            surfaces,
@@ -169,6 +259,7 @@ namespace rbc_ifem
           catch (const UnresolvedCutCells &e)
             {
               diffusion.reset();
+              const unsigned int refinement = recipe.refinements.size();
               if (refinement == mesh_parameters.diffusion_gap_refinements)
                 {
                   if (e.membranes)
@@ -186,13 +277,14 @@ namespace rbc_ifem
                   refine_ridges = false;
                   continue;
                 }
-              refine_cells_and_neighbors(mesh, e.cells);
-              ++refinement;
+              recipe.refinements.push_back(e.cells);
+              mesh.reset();
+              mesh = make_uptake_mesh(recipe, d.method, communicator, timer);
             }
       }
 
-      parallel::shared::Triangulation<3> mesh;
-      std::unique_ptr<DiffusionSolver>   diffusion;
+      std::unique_ptr<parallel::TriangulationBase<3>> mesh;
+      std::unique_ptr<DiffusionSolver>                diffusion;
     };
   } // namespace
 
@@ -227,8 +319,8 @@ namespace rbc_ifem
                TimerOutput                                    &timer,
                const std::function<void(const DiffusionSolver &)> &write_fields)
   {
-    Timer                                     clock;
-    const UptakeSetup                         setup(geometry,
+    Timer                                 clock;
+    const UptakeSetup                     setup(geometry,
                             mesh_parameters,
                             d,
                             surfaces,
@@ -236,8 +328,8 @@ namespace rbc_ifem
                             band_refinements,
                             communicator,
                             timer);
-    const parallel::shared::Triangulation<3> &mesh      = setup.mesh;
-    DiffusionSolver                          &diffusion = *setup.diffusion;
+    const parallel::TriangulationBase<3> &mesh      = *setup.mesh;
+    DiffusionSolver                      &diffusion = *setup.diffusion;
     diffusion.assemble();
     diffusion.solve();
     if (write_fields)
@@ -247,8 +339,8 @@ namespace rbc_ifem
     uptake.dm_total = diffusion.dm_total();
     for (const double flow : diffusion.membrane_flows())
       uptake.dm_cells.push_back(flow / d.alveolar_pressure);
-    uptake.n_nodes    = mesh.n_used_vertices();
-    uptake.n_cells    = mesh.n_active_cells();
+    uptake.n_nodes    = n_global_vertices(mesh);
+    uptake.n_cells    = mesh.n_global_active_cells();
     uptake.n_dofs     = diffusion.n_dofs();
     uptake.iterations = diffusion.n_iterations();
     uptake.seconds    = clock.wall_time();

@@ -3,6 +3,7 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/manifold_lib.h>
+#include <deal.II/grid/tria_description.h>
 #include <deal.II/numerics/rtree.h>
 
 #include <cmath>
@@ -126,14 +127,50 @@ namespace rbc_ifem
             if (on_circle(face, lumen_radius))
               face->set_all_manifold_ids(cylindrical_manifold_id);
 
-      triangulation.set_manifold(
-        cylindrical_manifold_id,
-        CylindricalManifold<3>(Tensor<1, 3>({1., 0., 0.}), Point<3>()));
-      TransfiniteInterpolationManifold<3> transfinite;
-      transfinite.initialize(triangulation);
-      triangulation.set_manifold(transfinite_manifold_id, transfinite);
+      attach_capillary_manifolds(triangulation);
     }
   } // namespace
+
+  void
+  attach_capillary_manifolds(Triangulation<3> &triangulation)
+  {
+    triangulation.set_manifold(
+      cylindrical_manifold_id,
+      CylindricalManifold<3>(Tensor<1, 3>({1., 0., 0.}), Point<3>()));
+    TransfiniteInterpolationManifold<3> transfinite;
+    transfinite.initialize(triangulation);
+    triangulation.set_manifold(transfinite_manifold_id, transfinite);
+  }
+
+  void
+  create_capillary_mesh(
+    parallel::fullydistributed::Triangulation<3>      &triangulation,
+    const TriangulationDescription::Description<3, 3> &description)
+  {
+    // The description holds the coarse cells; the finer levels are made by
+    // refinement, which places the new vertices on the manifolds. The
+    // transfinite one is built from the coarse cells and their manifold
+    // ids, so it is attached when they are all there: at the first
+    // refinement, or after the creation if there is none.
+    // Every boundary face of the coarse cells is a partition edge until the
+    // description gives the capillary's boundaries their ids (deal.II's
+    // default, 0, would make them the alveolar surface).
+    const boost::signals2::scoped_connection mark =
+      triangulation.signals.create.connect([&triangulation]() {
+        for (const auto &cell : triangulation.cell_iterators_on_level(0))
+          for (const auto &face : cell->face_iterators())
+            if (face->at_boundary())
+              face->set_boundary_id(partition_edge);
+      });
+    const boost::signals2::scoped_connection attach =
+      triangulation.signals.pre_refinement.connect([&triangulation]() {
+        if (triangulation.n_levels() == 1)
+          attach_capillary_manifolds(triangulation);
+      });
+    triangulation.create_triangulation(description);
+    if (triangulation.n_levels() == 1)
+      attach_capillary_manifolds(triangulation);
+  }
 
   void
   create_fluid_mesh(Triangulation<3>         &triangulation,

@@ -101,10 +101,12 @@ namespace rbc_ifem
     /**
      * Distribute the DoFs of P on @p mesh and of λ on @p membranes, locate
      * the membranes' quadrature points in @p mesh, build the sparsity
-     * patterns. Throws InputError if a membrane leaves the mesh.
+     * patterns. Throws InputError if a membrane leaves the mesh. @p mesh
+     * must be a parallel::shared::Triangulation: every rank locates every
+     * membrane point in it.
      */
     void
-    setup(const parallel::shared::Triangulation<3>       &mesh,
+    setup(const parallel::TriangulationBase<3>           &mesh,
           const std::vector<const Triangulation<2, 3> *> &membranes,
           const MappingQ<2, 3> &membrane_mapping) override;
 

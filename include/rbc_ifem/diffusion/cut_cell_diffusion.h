@@ -7,11 +7,14 @@
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/timer.h>
+#include <deal.II/distributed/tria_base.h>
 #include <deal.II/fe/fe_q.h>
+#include <deal.II/grid/cell_id.h>
 #include <deal.II/hp/fe_collection.h>
 #include <deal.II/hp/mapping_collection.h>
 #include <deal.II/hp/q_collection.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/la_parallel_vector.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/non_matching/fe_values.h>
@@ -44,11 +47,11 @@ namespace rbc_ifem
   {
   public:
     UnresolvedCutCells(
-      std::vector<unsigned int>                                   cells,
+      std::vector<CellId>                                         cells,
       const std::optional<std::pair<unsigned int, unsigned int>> &membranes);
 
-    /// Active cell indices of the mesh cells, on every rank.
-    const std::vector<unsigned int> cells;
+    /// The mesh cells, on every rank.
+    const std::vector<CellId> cells;
     /// Two membranes (indices into the membranes) that share a cell, if
     /// any do.
     const std::optional<std::pair<unsigned int, unsigned int>> membranes;
@@ -105,9 +108,11 @@ namespace rbc_ifem
      * quadrature point's membrane. Throws InputError if a membrane leaves
      * the lumen, UnresolvedCutCells if two pass through one mesh cell or
      * (unless refine_ridges(false)) the distance has a ridge in a cut cell.
+     * @p mesh is shared or fully distributed: each rank works on the cells
+     * it owns and the ghost layer around them.
      */
     void
-    setup(const parallel::shared::Triangulation<3>       &mesh,
+    setup(const parallel::TriangulationBase<3>           &mesh,
           const std::vector<const Triangulation<2, 3> *> &membranes,
           const MappingQ<2, 3> &membrane_mapping) override;
 
@@ -147,9 +152,13 @@ namespace rbc_ifem
 
     void
     compute_level_set();
-    /// The position of each level set node this rank needs: those of the
-    /// cells it owns and of two layers of cells around them.
-    std::vector<std::optional<Point<3>>>
+    /**
+     * The level set nodes of the cells this rank owns and their positions,
+     * each placed by the cell with the smallest CellId that holds it (the
+     * cells' mappings differ in the last digits), so that the ranks that
+     * share a node, and any number of ranks, place it alike.
+     */
+    std::vector<std::pair<types::global_dof_index, Point<3>>>
     level_set_nodes() const;
     /// Throw UnresolvedCutCells for the cut cells that the distance has a
     /// ridge in: two of their level set nodes whose closest points on one
@@ -199,10 +208,10 @@ namespace rbc_ifem
     const MPI_Comm                            communicator;
     TimerOutput                              &timer;
 
-    const parallel::shared::Triangulation<3> *mesh = nullptr;
-    std::vector<const Triangulation<2, 3> *>  membranes;
-    const MappingQ<2, 3>                     *membrane_mapping = nullptr;
-    std::unique_ptr<MembraneDistance>         distance;
+    const parallel::TriangulationBase<3>    *mesh = nullptr;
+    std::vector<const Triangulation<2, 3> *> membranes;
+    const MappingQ<2, 3>                    *membrane_mapping = nullptr;
+    std::unique_ptr<MembraneDistance>        distance;
 
     const MappingQ<3>              mapping;
     const hp::MappingCollection<3> mapping_collection;
@@ -211,12 +220,13 @@ namespace rbc_ifem
     const hp::QCollection<1> line_quadrature;
     const FE_Q<3>            level_set_fe;
     DoFHandler<3>            level_set_dof_handler;
-    /// φ = −(signed distance): < 0 in the plasma (deal.II's "inside").
-    Vector<double> level_set;
-    /// The membrane closest to each level set node, and the outward normal
-    /// at the closest point.
-    std::vector<unsigned int>                       closest_membranes;
-    std::vector<Tensor<1, 3>>                       closest_normals;
+    /// φ = −(signed distance): < 0 in the plasma (deal.II's "inside"), on
+    /// the nodes of the cells this rank owns and their ghost neighbours.
+    LinearAlgebra::distributed::Vector<double> level_set;
+    /// The membrane closest to each level set node of the cells this rank
+    /// owns, and the outward normal at the closest point.
+    std::map<types::global_dof_index, MembraneDistance::ClosestPoint>
+                                                    closest_points;
     bool                                            ridge_refinement = true;
     std::unique_ptr<NonMatching::MeshClassifier<3>> classifier;
 

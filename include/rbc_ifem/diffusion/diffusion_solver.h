@@ -4,7 +4,7 @@
 #include <rbc_ifem/base/field_data.h>
 
 #include <deal.II/base/mpi.h>
-#include <deal.II/distributed/shared_tria.h>
+#include <deal.II/distributed/tria_base.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/grid/tria.h>
@@ -41,10 +41,12 @@ namespace rbc_ifem
     /**
      * Distribute the DoFs on @p mesh, find the membranes @p membranes
      * (curved by @p membrane_mapping) in it, build the sparsity patterns.
-     * Throws InputError if a membrane leaves the mesh.
+     * Throws InputError if a membrane leaves the mesh. Each method says
+     * which parallel meshes it takes: the multiplier a shared one, cut
+     * cells a shared or a fully distributed one.
      */
     virtual void
-    setup(const parallel::shared::Triangulation<3>       &mesh,
+    setup(const parallel::TriangulationBase<3>           &mesh,
           const std::vector<const Triangulation<2, 3> *> &membranes,
           const MappingQ<2, 3>                           &membrane_mapping) = 0;
 

@@ -25,24 +25,15 @@ namespace rbc_ifem
   /// What one CO uptake solve gives.
   struct Uptake
   {
-    double                  dm_total = 0.;  ///< [µm³ s⁻¹ Torr⁻¹]
-    std::vector<double>     dm_cells;       ///< [µm³ s⁻¹ Torr⁻¹]
-    unsigned int            n_nodes    = 0; ///< vertices of the volume mesh
-    unsigned int            n_cells    = 0; ///< cells of the volume mesh
+    double              dm_total = 0.; ///< [µm³ s⁻¹ Torr⁻¹]
+    std::vector<double> dm_cells;      ///< [µm³ s⁻¹ Torr⁻¹]
+    unsigned int n_nodes = 0; ///< vertices of the volume mesh (all ranks')
+    unsigned int n_cells = 0; ///< cells of the volume mesh (all ranks')
     types::global_dof_index n_dofs     = 0; ///< P and λ
     unsigned int            iterations = 0;
     double                  seconds    = 0.; ///< wall time of the whole solve
   };
 
-  /**
-   * The DM building block: the CO uptake of the membranes @p surfaces
-   * (curved by @p mapping) in the capillary of @p geometry, on its diffusion
-   * mesh (Mesh/Diffusion global refinements) refined @p band_refinements
-   * times within Mesh/Band width of their vertices, by the solver of
-   * Diffusion/Method (DiffusionSolver); then
-   * @p write_fields, if given, writes what the caller wants of the solve.
-   * Throws SolverFailure if the solve fails.
-   */
   /**
    * What solve_uptake() does before it assembles, to reject the input it
    * would reject (a membrane outside the mesh, a diffusion mesh too coarse
@@ -58,6 +49,17 @@ namespace rbc_ifem
                       const MPI_Comm     communicator,
                       TimerOutput       &timer);
 
+  /**
+   * The DM building block: the CO uptake of the membranes @p surfaces
+   * (curved by @p mapping) in the capillary of @p geometry, on its diffusion
+   * mesh (Mesh/Diffusion global refinements) refined @p band_refinements
+   * times within Mesh/Band width of their vertices, by the solver of
+   * Diffusion/Method (DiffusionSolver); the mesh is fully distributed for
+   * cut cells (no rank but the first ever holds all of it), shared for the
+   * multiplier; then
+   * @p write_fields, if given, writes what the caller wants of the solve.
+   * Throws SolverFailure if the solve fails.
+   */
   Uptake
   solve_uptake(
     const GeometryParameters                           &geometry,

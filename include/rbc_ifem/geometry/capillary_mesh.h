@@ -5,7 +5,9 @@
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/types.h>
+#include <deal.II/distributed/fully_distributed_tria.h>
 #include <deal.II/grid/tria.h>
+#include <deal.II/grid/tria_description.h>
 
 #include <optional>
 #include <vector>
@@ -40,6 +42,14 @@ namespace rbc_ifem
     constexpr types::boundary_id outlet_end       = 2; ///< x = length
   } // namespace DiffusionBoundary
 
+  /**
+   * The faces where the local part of a fully distributed mesh ends
+   * without a neighbour (create_capillary_mesh()): not a boundary of the
+   * capillary, so no boundary condition acts there.
+   */
+  constexpr types::boundary_id partition_edge =
+    numbers::internal_face_boundary_id - 1;
+
   namespace Material
   {
     constexpr types::material_id plasma      = 0; ///< the lumen
@@ -61,6 +71,26 @@ namespace rbc_ifem
   create_diffusion_mesh(Triangulation<3>         &triangulation,
                         const GeometryParameters &geometry,
                         const unsigned int        n_global_refinements);
+
+  /**
+   * Attach the manifolds of a capillary mesh (create_fluid_mesh(),
+   * create_diffusion_mesh(): the cylinder, and the transfinite blend of the
+   * lumen's core) to @p triangulation, whose coarse cells carry their
+   * manifold ids.
+   */
+  void
+  attach_capillary_manifolds(Triangulation<3> &triangulation);
+
+  /**
+   * Create @p triangulation from @p description, the description of a
+   * capillary mesh (TriangulationDescription::Utilities), with the manifolds
+   * its serial mesh had, so that its vertices are the serial mesh's. The
+   * faces where its local part ends get the boundary id partition_edge.
+   */
+  void
+  create_capillary_mesh(
+    parallel::fullydistributed::Triangulation<3>      &triangulation,
+    const TriangulationDescription::Description<3, 3> &description);
 
   /**
    * @p p moved along x by a multiple of @p period into [0, period): where a

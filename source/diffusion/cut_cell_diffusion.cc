@@ -109,11 +109,22 @@ namespace rbc_ifem
     this->mesh             = &mesh;
     this->membranes        = membranes;
     this->membrane_mapping = &membrane_mapping;
-    distance =
-      std::make_unique<MembraneDistance>(membranes, membrane_mapping, period);
+    if (shared_distance)
+      distance = shared_distance;
+    else
+      {
+        TimerOutput::Scope sampling(timer, "diffusion: membrane sampling");
+        distance = std::make_shared<MembraneDistance>(membranes,
+                                                      membrane_mapping,
+                                                      period);
+      }
     compute_level_set();
-    if (ridge_refinement)
-      check_for_ridges();
+    // Both kinds of unresolved cells at once, so that one refinement takes
+    // care of them.
+    const std::vector<CellId> ridges =
+      ridge_refinement ? ridge_cells() : std::vector<CellId>();
+    const SharedCells shared = locate_surface_points();
+    throw_if_unresolved(ridges, shared);
     distribute_dofs();
     make_pressure_constraints(dof_handler,
                               mapping,
@@ -121,7 +132,6 @@ namespace rbc_ifem
                               parameters.alveolar_pressure,
                               period,
                               constraints);
-    locate_surface_points();
     setup_matrix();
   }
 
@@ -214,7 +224,14 @@ namespace rbc_ifem
   }
 
   void
-  CutCellDiffusion::check_for_ridges() const
+  CutCellDiffusion::share_membrane_distance(
+    std::shared_ptr<const MembraneDistance> distance)
+  {
+    shared_distance = std::move(distance);
+  }
+
+  std::vector<CellId>
+  CutCellDiffusion::ridge_cells() const
   {
     std::vector<CellId>                  cells;
     std::vector<types::global_dof_index> dofs(level_set_fe.n_dofs_per_cell());
@@ -232,9 +249,28 @@ namespace rbc_ifem
           if (std::any_of(dofs.begin(), dofs.end(), faces_away))
             cells.push_back(cell->id());
         }
-    const std::vector<CellId> all_cells = gather(cells, communicator);
-    if (!all_cells.empty())
-      throw UnresolvedCutCells(all_cells, std::nullopt);
+    return cells;
+  }
+
+  void
+  CutCellDiffusion::throw_if_unresolved(const std::vector<CellId> &ridges,
+                                        const SharedCells         &shared) const
+  {
+    std::vector<CellId> cells = gather(shared.cells, communicator);
+    std::optional<std::pair<unsigned int, unsigned int>> membranes;
+    if (!cells.empty())
+      // The pair from the lowest rank that found one.
+      for (const auto &pair :
+           Utilities::MPI::all_gather(communicator, shared.membranes))
+        if (pair.first != pair.second)
+          {
+            membranes = pair;
+            break;
+          }
+    const std::vector<CellId> ridge_cells = gather(ridges, communicator);
+    cells.insert(cells.end(), ridge_cells.begin(), ridge_cells.end());
+    if (!cells.empty())
+      throw UnresolvedCutCells(cells, membranes);
   }
 
   void
@@ -253,7 +289,7 @@ namespace rbc_ifem
   }
 
 
-  void
+  CutCellDiffusion::SharedCells
   CutCellDiffusion::locate_surface_points()
   {
     TimerOutput::Scope             scope(timer, "diffusion: surface points");
@@ -265,11 +301,10 @@ namespace rbc_ifem
     // [0] a cut cell outside the plasma (a membrane in the vessel wall) and
     // [1 + m] the number of surface points on membrane m; and the cut cells
     // that two membranes share.
-    std::vector<unsigned int>             findings(1 + membranes.size(), 0);
-    std::vector<CellId>                   shared_cells;
-    std::pair<unsigned int, unsigned int> shared_by{0, 0};
+    std::vector<unsigned int> findings(1 + membranes.size(), 0);
+    SharedCells               shared;
     surface_points.clear();
-    for (const auto &cell : dof_handler.active_cell_iterators())
+    for (const auto &cell : level_set_dof_handler.active_cell_iterators())
       if (cell->is_locally_owned() && is_cut(*classifier, cell))
         {
           fe_values.reinit(cell);
@@ -287,9 +322,10 @@ namespace rbc_ifem
           for (const auto &point : points)
             if (point.membrane != points.front().membrane)
               {
-                shared_cells.push_back(cell->id());
-                shared_by = {std::min(point.membrane, points.front().membrane),
-                             std::max(point.membrane, points.front().membrane)};
+                shared.cells.push_back(cell->id());
+                shared.membranes = {
+                  std::min(point.membrane, points.front().membrane),
+                  std::max(point.membrane, points.front().membrane)};
                 break;
               }
         }
@@ -306,19 +342,7 @@ namespace rbc_ifem
                          "this membrane cuts no cell of the diffusion mesh: "
                          "it lies outside the capillary, or within one "
                          "cell of the mesh.");
-    const std::vector<CellId> all_shared = gather(shared_cells, communicator);
-    if (!all_shared.empty())
-      {
-        // The pair from the lowest rank that found one.
-        for (const auto &pair :
-             Utilities::MPI::all_gather(communicator, shared_by))
-          if (pair.first != pair.second)
-            {
-              shared_by = pair;
-              break;
-            }
-        throw UnresolvedCutCells(all_shared, shared_by);
-      }
+    return shared;
   }
 
   bool

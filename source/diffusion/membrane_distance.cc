@@ -1,6 +1,10 @@
 #include <rbc_ifem/diffusion/membrane_distance.h>
 
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <boost/container_hash/hash.hpp>
 
 #include <algorithm>
 #include <array>
@@ -45,8 +49,19 @@ namespace rbc_ifem
       support.emplace_back(t);
     basis = Polynomials::generate_complete_Lagrange_basis(support);
 
-    const unsigned int n_nodes = degree + 1;
-    const QGauss<2>    volume_quadrature(degree + 2);
+    // The patch nodes of each cell, in one evaluation of its mapping (which
+    // places its support points on the manifold once).
+    const unsigned int    n_nodes = degree + 1;
+    std::vector<Point<2>> unit_nodes;
+    for (unsigned int j = 0; j < n_nodes; ++j)
+      for (unsigned int i = 0; i < n_nodes; ++i)
+        unit_nodes.emplace_back(nodes_1d[i], nodes_1d[j]);
+    const FE_Q<2, 3> fe(1);
+    FEValues<2, 3>   node_values(mapping,
+                               fe,
+                               Quadrature<2>(unit_nodes),
+                               update_quadrature_points);
+    const QGauss<2>  volume_quadrature(degree + 2);
     for (unsigned int m = 0; m < membranes.size(); ++m)
       {
         const unsigned int first  = patches.size();
@@ -54,10 +69,8 @@ namespace rbc_ifem
         for (const auto &cell : membranes[m]->active_cell_iterators())
           {
             Patch patch{m, cell, {}, 1.};
-            for (unsigned int j = 0; j < n_nodes; ++j)
-              for (unsigned int i = 0; i < n_nodes; ++i)
-                patch.nodes.push_back(mapping.transform_unit_to_real_cell(
-                  cell, Point<2>(nodes_1d[i], nodes_1d[j])));
+            node_values.reinit(cell);
+            patch.nodes = node_values.get_quadrature_points();
             // The enclosed volume, (1/3) ∫ F · (∂₀F × ∂₁F) dξ, tells
             // which side the tangents' normal points to.
             for (unsigned int q = 0; q < volume_quadrature.size(); ++q)
@@ -158,9 +171,22 @@ namespace rbc_ifem
     return result;
   }
 
+  std::size_t
+  MembraneDistance::PointHash::operator()(const Point<3> &x) const
+  {
+    std::size_t seed = 0;
+    for (unsigned int d = 0; d < 3; ++d)
+      boost::hash_combine(seed, std::hash<double>()(x[d]));
+    return seed;
+  }
+
   MembraneDistance::ClosestPoint
   MembraneDistance::closest_point(const Point<3> &x) const
   {
+    const auto known = answers.find(x);
+    if (known != answers.end())
+      return known->second;
+
     std::vector<Point<3>> images{x};
     if (period)
       for (const double shift : {-*period, *period})
@@ -188,6 +214,7 @@ namespace rbc_ifem
               best = candidate;
           }
       }
+    answers.emplace(x, best);
     return best;
   }
 } // namespace rbc_ifem

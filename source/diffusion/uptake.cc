@@ -166,10 +166,11 @@ namespace rbc_ifem
                      const DiffusionParameters                      &d,
                      const std::vector<const Triangulation<2, 3> *> &surfaces,
                      const MappingQ<2, 3>                           &mapping,
-                     const unsigned int band_refinements,
-                     const bool         refine_ridges,
-                     const MPI_Comm     communicator,
-                     TimerOutput       &timer)
+                     const unsigned int                      band_refinements,
+                     const bool                              refine_ridges,
+                     std::shared_ptr<const MembraneDistance> distance,
+                     const MPI_Comm                          communicator,
+                     TimerOutput                            &timer)
     {
       const auto permeability = [&d](const unsigned int id) {
         return d.permeability(id);
@@ -185,6 +186,7 @@ namespace rbc_ifem
             timer,
             geometry.period());
           cut_cells->refine_ridges(refine_ridges);
+          cut_cells->share_membrane_distance(std::move(distance));
           diffusion = std::move(cut_cells);
         }
       else
@@ -237,6 +239,15 @@ namespace rbc_ifem
         UptakeMeshRecipe recipe{
           geometry, mesh_parameters, surfaces, band_refinements, {}};
         mesh = make_uptake_mesh(recipe, d.method, communicator, timer);
+        // Cut cells: the membranes sampled once for every attempt below.
+        std::shared_ptr<const MembraneDistance> distance;
+        if (d.method == DiffusionMethod::cut_cell)
+          {
+            TimerOutput::Scope scope(timer, "diffusion: membrane sampling");
+            distance = std::make_shared<MembraneDistance>(surfaces,
+                                                          mapping,
+                                                          geometry.period());
+          }
         // Cut cells: refine where two membranes share a mesh cell, or the
         // distance to them has a ridge in one, until none does; after the
         // last refinement allowed a shared cell is an error, a ridge is
@@ -252,6 +263,7 @@ namespace rbc_ifem
                                            mapping,
                                            band_refinements,
                                            refine_ridges,
+                                           distance,
                                            communicator,
                                            timer);
               return;
@@ -339,8 +351,10 @@ namespace rbc_ifem
     uptake.dm_total = diffusion.dm_total();
     for (const double flow : diffusion.membrane_flows())
       uptake.dm_cells.push_back(flow / d.alveolar_pressure);
-    uptake.n_nodes    = n_global_vertices(mesh);
-    uptake.n_cells    = mesh.n_global_active_cells();
+    uptake.n_nodes = n_global_vertices(mesh);
+    uptake.n_cells = mesh.n_global_active_cells();
+    uptake.n_cells_largest_rank =
+      Utilities::MPI::max(mesh.n_active_cells(), communicator);
     uptake.n_dofs     = diffusion.n_dofs();
     uptake.iterations = diffusion.n_iterations();
     uptake.seconds    = clock.wall_time();

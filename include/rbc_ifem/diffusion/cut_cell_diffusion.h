@@ -21,6 +21,7 @@
 #include <deal.II/non_matching/mesh_classifier.h>
 
 #include <map>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <utility>
@@ -125,6 +126,16 @@ namespace rbc_ifem
     void
     refine_ridges(const bool refine);
 
+    /**
+     * Take the distance to the membranes from @p distance, built by the
+     * caller for the membranes that setup() will be given, instead of
+     * sampling them in setup(): a caller that sets up on several meshes
+     * around the same membranes samples them once, and finds each closest
+     * point once (MembraneDistance remembers them).
+     */
+    void
+    share_membrane_distance(std::shared_ptr<const MembraneDistance> distance);
+
     void
     assemble() override;
 
@@ -160,15 +171,36 @@ namespace rbc_ifem
      */
     std::vector<std::pair<types::global_dof_index, Point<3>>>
     level_set_nodes() const;
-    /// Throw UnresolvedCutCells for the cut cells that the distance has a
-    /// ridge in: two of their level set nodes whose closest points on one
-    /// membrane face opposite ways.
+    /// The cut cells of this rank that the distance has a ridge in: two of
+    /// their level set nodes whose closest points on one membrane face
+    /// opposite ways.
+    std::vector<CellId>
+    ridge_cells() const;
+
+    /// Cut cells of this rank that two membranes pass through, and two such
+    /// membranes (equal if there are none).
+    struct SharedCells
+    {
+      std::vector<CellId>                   cells;
+      std::pair<unsigned int, unsigned int> membranes{0, 0};
+    };
+
+    /**
+     * Find each surface quadrature point's membrane, and the cut cells that
+     * two membranes share. Throws InputError if a membrane reaches into
+     * the vessel wall or cuts no cell.
+     */
+    SharedCells
+    locate_surface_points();
+
+    /// Throw UnresolvedCutCells, on every rank, if any rank found
+    /// @p ridges or @p shared cells.
     void
-    check_for_ridges() const;
+    throw_if_unresolved(const std::vector<CellId> &ridges,
+                        const SharedCells         &shared) const;
+
     void
     distribute_dofs();
-    void
-    locate_surface_points();
     void
     setup_matrix();
     void
@@ -211,7 +243,8 @@ namespace rbc_ifem
     const parallel::TriangulationBase<3>    *mesh = nullptr;
     std::vector<const Triangulation<2, 3> *> membranes;
     const MappingQ<2, 3>                    *membrane_mapping = nullptr;
-    std::unique_ptr<MembraneDistance>        distance;
+    std::shared_ptr<const MembraneDistance>  shared_distance;
+    std::shared_ptr<const MembraneDistance>  distance;
 
     const MappingQ<3>              mapping;
     const hp::MappingCollection<3> mapping_collection;

@@ -10,6 +10,7 @@
 
 #include <memory>
 #include <optional>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -62,7 +63,12 @@ namespace rbc_ifem
     MembraneDistance &
     operator=(const MembraneDistance &) = delete;
 
-    /// The closest membrane point to @p x and its signed distance.
+    /**
+     * The closest membrane point to @p x and its signed distance. Each
+     * answer is remembered, so that a point asked again (a level set node
+     * of a mesh refined around the membranes and built again) costs a
+     * lookup.
+     */
     ClosestPoint
     closest_point(const Point<3> &x) const;
 
@@ -100,6 +106,14 @@ namespace rbc_ifem
     using Tree = decltype(pack_rtree_of_indices(samples));
     std::unique_ptr<Tree> tree;
     std::optional<double> period;
+
+    /// The bits of a point's coordinates: exact equality, hashed.
+    struct PointHash
+    {
+      std::size_t
+      operator()(const Point<3> &x) const;
+    };
+    mutable std::unordered_map<Point<3>, ClosestPoint, PointHash> answers;
   };
 } // namespace rbc_ifem
 

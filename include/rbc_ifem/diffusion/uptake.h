@@ -29,9 +29,13 @@ namespace rbc_ifem
     std::vector<double> dm_cells;      ///< [µm³ s⁻¹ Torr⁻¹]
     unsigned int n_nodes = 0; ///< vertices of the volume mesh (all ranks')
     unsigned int n_cells = 0; ///< cells of the volume mesh (all ranks')
-    types::global_dof_index n_dofs     = 0; ///< P and λ
-    unsigned int            iterations = 0;
-    double                  seconds    = 0.; ///< wall time of the whole solve
+    /// Cells of the volume mesh that the rank holding the most holds (its
+    /// own, their ghost layer and what they need of the coarser levels;
+    /// every cell on a shared mesh).
+    unsigned int            n_cells_largest_rank = 0;
+    types::global_dof_index n_dofs               = 0; ///< P and λ
+    unsigned int            iterations           = 0;
+    double                  seconds = 0.; ///< wall time of the whole solve
   };
 
   /**

@@ -120,9 +120,13 @@ namespace rbc_ifem
       }
     compute_level_set();
     // Both kinds of unresolved cells at once, so that one refinement takes
-    // care of them.
+    // care of them; one membrane shares no cell, and the surface points of a
+    // mesh that will be refined are not needed.
     const std::vector<CellId> ridges =
       ridge_refinement ? ridge_cells() : std::vector<CellId>();
+    if (membranes.size() == 1 &&
+        Utilities::MPI::logical_or(!ridges.empty(), communicator))
+      throw_if_unresolved(ridges, SharedCells());
     const SharedCells shared = locate_surface_points();
     throw_if_unresolved(ridges, shared);
     distribute_dofs();

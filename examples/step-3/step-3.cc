@@ -105,8 +105,8 @@ main(int argc, char *argv[])
                      parameters.mesh.band_width,
                      parameters.mesh.fluid_band_refinements);
 
-  // Q2-Q1 unsteady Stokes, backward Euler: the operator and its
-  // preconditioner do not change and are built once, in setup().
+  // Q2-Q1 unsteady Stokes, backward Euler, matrix-free: setup() builds the
+  // DoFs, the operators and the multigrid levels of the velocity once.
   FluidProblem fluid(triangulation, parameters.fluid, domain.drive, dt, timer);
   fluid.setup();
 
@@ -116,7 +116,7 @@ main(int argc, char *argv[])
   // fluid takes).
   ImmersedCoupling coupling(triangulation,
                             fluid.get_mapping(),
-                            fluid.get_dof_handler());
+                            fluid.velocity_dof_handler());
   coupling.place(cells.points());
 
   // The coupling is explicit: Δt must stay below about 0.7 of this
@@ -125,13 +125,12 @@ main(int argc, char *argv[])
                                     parameters.membrane,
                                     cells.point_spacing(),
                                     coupling.mesh_size_at_points());
-  pcout << cells.n_points() << " membrane points, "
-        << fluid.get_dof_handler().n_dofs() << " fluid DoFs; Δt = " << dt
-        << " s, " << dt / limit.limit << " of the explicit-coupling limit"
-        << std::endl;
+  pcout << cells.n_points() << " membrane points, " << fluid.n_dofs()
+        << " fluid DoFs; Δt = " << dt << " s, " << dt / limit.limit
+        << " of the explicit-coupling limit" << std::endl;
 
-  TrilinosWrappers::MPI::BlockVector load(fluid.owned_partitioning(),
-                                          communicator);
+  VelocityVector load;
+  fluid.initialize_velocity_vector(load);
   CsvTable   table("time,dm_total,deformation_index,volume_change");
   const auto record = [&](const double time, const double dm) {
     const CellShape shape = cells.shapes()[0];
@@ -152,7 +151,7 @@ main(int argc, char *argv[])
 
       // 3. Spread them to the fluid: f_J = Σ_I F_I φ_J(x_I).
       load = 0.;
-      coupling.spread(forces, fluid.zero_constraints(), load);
+      coupling.spread(forces, fluid.velocity_zero_constraints(), load);
       fluid.set_body_force(load);
 
       // 4. One Stokes step for v and p.
@@ -160,7 +159,7 @@ main(int argc, char *argv[])
 
       // 5. Interpolate the new velocity to the points: v_I = Σ_J v_J φ_J.
       const std::vector<Tensor<1, 3>> velocities =
-        coupling.interpolate(fluid.solution());
+        coupling.interpolate(fluid.solution().block(0));
 
       // 6. Move the points, x += Δt v_I, and find their cells anew.
       cells.move(velocities, dt);

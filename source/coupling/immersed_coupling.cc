@@ -11,21 +11,20 @@
 
 namespace rbc_ifem
 {
-  ImmersedCoupling::ImmersedCoupling(
-    const parallel::shared::Triangulation<3> &triangulation,
-    const Mapping<3>                         &mapping,
-    const DoFHandler<3>                      &fluid_dof_handler,
-    const std::optional<double>              &period)
+  ImmersedCoupling::ImmersedCoupling(const Triangulation<3> &triangulation,
+                                     const Mapping<3>       &mapping,
+                                     const DoFHandler<3> &velocity_dof_handler,
+                                     const std::optional<double> &period)
     : triangulation(triangulation)
-    , dof_handler(fluid_dof_handler)
+    , dof_handler(velocity_dof_handler)
     , period(period)
     , cache(triangulation, mapping)
     , particles(triangulation, mapping)
   {
     const FiniteElement<3> &fe = dof_handler.get_fe();
     for (unsigned int k = 0; k < fe.n_dofs_per_cell(); ++k)
-      if (const unsigned int c = fe.system_to_component_index(k).first; c < 3)
-        velocity_shape_functions.emplace_back(k, c);
+      velocity_shape_functions.emplace_back(
+        k, fe.system_to_component_index(k).first);
   }
 
   void
@@ -84,9 +83,9 @@ namespace rbc_ifem
   }
 
   void
-  ImmersedCoupling::spread(const std::vector<Tensor<1, 3>>    &forces,
-                           const AffineConstraints<double>    &constraints,
-                           TrilinosWrappers::MPI::BlockVector &load) const
+  ImmersedCoupling::spread(const std::vector<Tensor<1, 3>> &forces,
+                           const AffineConstraints<double> &constraints,
+                           VelocityVector                  &load) const
   {
     AssertDimension(forces.size(), n_membrane_points);
     Vector<double> cell_load(dof_handler.get_fe().n_dofs_per_cell());
@@ -102,8 +101,7 @@ namespace rbc_ifem
   }
 
   std::vector<Tensor<1, 3>>
-  ImmersedCoupling::interpolate(
-    const TrilinosWrappers::MPI::BlockVector &solution) const
+  ImmersedCoupling::interpolate(const VelocityVector &velocity_field) const
   {
     // Each point is on one rank; the others add zero.
     std::vector<double> velocity(3 * n_membrane_points, 0.);
@@ -111,7 +109,7 @@ namespace rbc_ifem
     auto                phi = shape_values.begin();
     for_each_particle_cell([&](const auto &dofs, const auto &in_cell) {
       for (const auto &[k, c] : velocity_shape_functions)
-        cell_values[k] = solution(dofs[k]);
+        cell_values[k] = velocity_field(dofs[k]);
       for (const auto &p : in_cell)
         for (const auto &[k, c] : velocity_shape_functions)
           velocity[3 * p.get_id() + c] += cell_values[k] * *phi++;

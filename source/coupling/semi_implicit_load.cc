@@ -14,8 +14,8 @@ namespace rbc_ifem
   {}
 
   void
-  SemiImplicitLoad::operator()(const TrilinosWrappers::MPI::BlockVector &v,
-                               TrilinosWrappers::MPI::BlockVector &result) const
+  SemiImplicitLoad::operator()(const VelocityVector &v,
+                               VelocityVector       &result) const
   {
     std::vector<Tensor<1, 3>> displacements = coupling.interpolate(v);
     for (Tensor<1, 3> &d : displacements)

@@ -45,9 +45,10 @@ namespace rbc_ifem
     }
     fluid.setup();
     pcout << "  mesh: " << triangulation.n_active_cells() << " cells; "
-          << fluid.get_dof_handler().n_dofs() << " DoFs ("
-          << fluid.owned_partitioning()[0].size() << " velocity, "
-          << fluid.owned_partitioning()[1].size() << " pressure)" << std::endl;
+          << fluid.n_dofs() << " DoFs ("
+          << fluid.velocity_dof_handler().n_dofs() << " velocity, "
+          << fluid.pressure_dof_handler().n_dofs() << " pressure); "
+          << multigrid_levels_text(fluid) << std::endl;
   }
 
   void

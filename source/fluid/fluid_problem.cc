@@ -1,17 +1,16 @@
 #include <rbc_ifem/base/output.h>
 #include <rbc_ifem/base/solver_failure.h>
 #include <rbc_ifem/fluid/fluid_problem.h>
+#include <rbc_ifem/fluid/stokes_operator.h>
 #include <rbc_ifem/fluid/stokes_preconditioner.h>
+#include <rbc_ifem/fluid/velocity_multigrid.h>
 #include <rbc_ifem/geometry/capillary_mesh.h>
+#include <rbc_ifem/geometry/mesh_hierarchy.h>
 
 #include <deal.II/base/quadrature_lib.h>
-#include <deal.II/dofs/dof_renumbering.h>
 #include <deal.II/dofs/dof_tools.h>
-#include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
-#include <deal.II/lac/block_sparsity_pattern.h>
 #include <deal.II/lac/solver_gmres.h>
-#include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 #include <deal.II/numerics/vector_tools.h>
@@ -22,12 +21,6 @@
 
 namespace rbc_ifem
 {
-  namespace
-  {
-    const FEValuesExtractors::Vector velocities(0);
-    const FEValuesExtractors::Scalar pressure(3);
-  } // namespace
-
   PoiseuilleFlow::PoiseuilleFlow(const double              mean_speed,
                                  const double              frame_velocity,
                                  const double              viscosity,
@@ -109,15 +102,15 @@ namespace rbc_ifem
 
   namespace
   {
-    /// scale (v(p) - U e_x): a drive's velocity seen from a frame moving with
-    /// U.
+    /// scale (v(p) - U e_x): a drive's velocity (the first three components
+    /// of its (v, p)) seen from a frame moving with U.
     class FrameVelocity : public Function<3>
     {
     public:
       FrameVelocity(const Function<3> &velocity,
                     const double       frame_velocity,
                     const double       scale)
-        : Function<3>(4)
+        : Function<3>(3)
         , velocity(velocity)
         , frame_velocity(frame_velocity)
         , scale(scale)
@@ -159,15 +152,50 @@ namespace rbc_ifem
     private:
       const double frame_velocity;
     };
+
+    /// J + L of FluidProblem: the Stokes operator and the velocity load.
+    template <typename Load>
+    class OperatorWithLoad
+    {
+    public:
+      OperatorWithLoad(const StokesOperator &stokes, const Load &load)
+        : stokes(stokes)
+        , load(load)
+      {}
+
+      void
+      vmult(FluidVector &dst, const FluidVector &src) const
+      {
+        stokes.vmult(dst, src);
+        load(src.block(0), dst.block(0));
+      }
+
+    private:
+      const StokesOperator &stokes;
+      const Load           &load;
+    };
+
+    /// The periodic face pairs of a periodic segment on @p dof_handler.
+    std::vector<GridTools::PeriodicFacePair<DoFHandler<3>::cell_iterator>>
+    periodic_face_pairs(const DoFHandler<3> &dof_handler)
+    {
+      std::vector<GridTools::PeriodicFacePair<DoFHandler<3>::cell_iterator>>
+        pairs;
+      GridTools::collect_periodic_faces(dof_handler,
+                                        FluidBoundary::inlet,
+                                        FluidBoundary::outlet,
+                                        /*direction=*/0,
+                                        pairs);
+      return pairs;
+    }
   } // namespace
 
 
-  FluidProblem::FluidProblem(
-    const parallel::shared::Triangulation<3> &triangulation,
-    const FluidParameters                    &parameters,
-    const FlowDrive                          &drive,
-    const double                              time_step,
-    TimerOutput                              &timer)
+  FluidProblem::FluidProblem(const Triangulation<3> &triangulation,
+                             const FluidParameters  &parameters,
+                             const FlowDrive        &drive,
+                             const double            time_step,
+                             TimerOutput            &timer)
     : parameters(parameters)
     , drive(drive)
     , time_step(time_step)
@@ -175,63 +203,42 @@ namespace rbc_ifem
     , timer(timer)
     , triangulation(triangulation)
     , mapping(2)
-    , fe(FE_Q<3>(2), 3, FE_Q<3>(1), 1)
-    , dof_handler(triangulation)
+    , velocity_fe(FE_Q<3>(2), 3)
+    , pressure_fe(1)
+    , velocity_dofs(triangulation)
+    , pressure_dofs(triangulation)
     , frame_velocity(parameters.frame_velocity)
   {}
+
+  FluidProblem::~FluidProblem() = default;
 
   void
   FluidProblem::setup()
   {
     TimerOutput::Scope scope(timer, "fluid: setup");
     setup_dofs();
-    setup_matrices();
-    assemble_drive_load();
-    if (parameters.model == FluidModel::stokes)
-      {
-        // The Stokes operator does not change: assemble it and its
-        // preconditioner once.
-        assemble_jacobian(false);
-        build_preconditioner();
-      }
+    setup_solver();
   }
 
   void
   FluidProblem::setup_dofs()
   {
-    dof_handler.distribute_dofs(fe);
-    const std::vector<unsigned int> block_component{0, 0, 0, 1};
-    DoFRenumbering::component_wise(dof_handler, block_component);
-    const std::vector<types::global_dof_index> dofs_per_block =
-      DoFTools::count_dofs_per_fe_block(dof_handler, block_component);
-    const types::global_dof_index n_v = dofs_per_block[0],
-                                  n_p = dofs_per_block[1];
-
-    const IndexSet owned_dofs = dof_handler.locally_owned_dofs();
-    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
-    owned = {owned_dofs.get_view(0, n_v), owned_dofs.get_view(n_v, n_v + n_p)};
-    relevant = {relevant_dofs.get_view(0, n_v),
-                relevant_dofs.get_view(n_v, n_v + n_p)};
-
-    if (drive.period)
-      GridTools::collect_periodic_faces(dof_handler,
-                                        FluidBoundary::inlet,
-                                        FluidBoundary::outlet,
-                                        /*direction=*/0,
-                                        periodic_faces);
-    make_constraints(homogeneous_constraints, 0.);
+    velocity_dofs.distribute_dofs(velocity_fe);
+    pressure_dofs.distribute_dofs(pressure_fe);
+    make_velocity_constraints(velocity_dofs, velocity_constraints, 0.);
+    make_pressure_constraints();
     constrained_frame_velocity = std::numeric_limits<double>::quiet_NaN();
   }
 
   void
-  FluidProblem::make_constraints(AffineConstraints<double> &constraints,
-                                 const double               scale) const
+  FluidProblem::make_velocity_constraints(
+    const DoFHandler<3>       &dof_handler,
+    AffineConstraints<double> &constraints,
+    const double               scale) const
   {
     constraints.clear();
-    constraints.reinit(relevant_dofs);
+    constraints.reinit(DoFTools::extract_locally_relevant_dofs(dof_handler));
     DoFTools::make_hanging_node_constraints(dof_handler, constraints);
-
-    const ComponentMask velocity_mask = fe.component_mask(velocities);
     for (const auto &[boundary, velocity] : drive.dirichlet)
       VectorTools::interpolate_boundary_values(mapping,
                                                dof_handler,
@@ -239,216 +246,91 @@ namespace rbc_ifem
                                                FrameVelocity(*velocity,
                                                              frame_velocity,
                                                              scale),
-                                               constraints,
-                                               velocity_mask);
+                                               constraints);
     // After the wall's values, which the periodicity then leaves alone on
     // the edges where the wall meets the ends.
-    DoFTools::make_periodicity_constraints<3, 3>(periodic_faces, constraints);
+    if (drive.period)
+      DoFTools::make_periodicity_constraints<3, 3>(
+        periodic_face_pairs(dof_handler), constraints);
     constraints.close();
   }
 
   void
-  FluidProblem::setup_matrices()
+  FluidProblem::make_pressure_constraints()
   {
-    const unsigned int rank   = Utilities::MPI::this_mpi_process(communicator);
-    const auto         reinit = [&](TrilinosWrappers::BlockSparseMatrix &matrix,
-                            const auto                          &couples) {
-      Table<2, DoFTools::Coupling> coupling(4, 4);
-      for (unsigned int c = 0; c < 4; ++c)
-        for (unsigned int d = 0; d < 4; ++d)
-          coupling[c][d] = couples(c, d) ? DoFTools::always : DoFTools::none;
-      TrilinosWrappers::BlockSparsityPattern sparsity(owned,
-                                                      owned,
-                                                      relevant,
-                                                      communicator);
-      DoFTools::make_sparsity_pattern(
-        dof_handler, coupling, sparsity, homogeneous_constraints, false, rank);
-      sparsity.compress();
-      matrix.reinit(sparsity);
-    };
-    // The viscous term μ∇v:∇w couples no two velocity components; only
-    // the convective term of Navier-Stokes does. Leaving those couplings
-    // out in Stokes mode makes the velocity block, and every AMG and
-    // matrix-vector product on it, three times smaller.
-    const bool navier_stokes = parameters.model == FluidModel::navier_stokes;
-    reinit(system_matrix, [&](unsigned int c, unsigned int d) {
-      return (c < 3 && d < 3) ? (c == d || navier_stokes) : (c < 3 || d < 3);
-    });
-    reinit(schur_matrix,
-           [](unsigned int c, unsigned int d) { return c == 3 && d == 3; });
+    pressure_constraints.clear();
+    pressure_constraints.reinit(
+      DoFTools::extract_locally_relevant_dofs(pressure_dofs));
+    DoFTools::make_hanging_node_constraints(pressure_dofs,
+                                            pressure_constraints);
+    if (drive.period)
+      DoFTools::make_periodicity_constraints<3, 3>(
+        periodic_face_pairs(pressure_dofs), pressure_constraints);
+    pressure_constraints.close();
+  }
 
-    current.reinit(owned, relevant, communicator);
-    previous.reinit(owned, relevant, communicator);
-    residual.reinit(owned, communicator);
-    update.reinit(owned, communicator);
-    body_force.reinit(owned, communicator);
-    load_owned.reinit(owned, communicator);
-    load_ghosted.reinit(owned, relevant, communicator);
-    drive_load.reinit(owned, communicator);
-    unit_axial_velocity.reinit(owned, communicator);
+  void
+  FluidProblem::setup_solver()
+  {
+    stokes = std::make_unique<StokesOperator>(mapping,
+                                              velocity_dofs,
+                                              pressure_dofs,
+                                              velocity_constraints,
+                                              pressure_constraints);
+    stokes->set_coefficients(parameters.density,
+                             parameters.viscosity,
+                             time_step);
+
+    coarser_meshes     = global_coarsening_sequence(triangulation);
+    velocity_multigrid = std::make_unique<VelocityMultigrid>(
+      coarser_meshes,
+      mapping,
+      stokes->get_matrix_free(),
+      StokesOperator::velocity_index,
+      velocity_constraints,
+      [this](const DoFHandler<3>       &dof_handler,
+             AffineConstraints<double> &constraints) {
+        make_velocity_constraints(dof_handler, constraints, 0.);
+      });
+    velocity_multigrid->set_coefficients(parameters.density / time_step,
+                                         parameters.viscosity);
+    preconditioner =
+      std::make_unique<StokesPreconditioner>(*stokes, *velocity_multigrid);
+
+    stokes->initialize_dof_vector(current);
+    stokes->initialize_dof_vector(residual);
+    stokes->initialize_dof_vector(update);
+    initialize_velocity_vector(previous_velocity);
+    initialize_velocity_vector(body_force);
+    initialize_velocity_vector(load_field);
+    initialize_velocity_vector(drive_load);
+    initialize_velocity_vector(unit_axial_velocity);
+    if (drive.pressure_gradient != 0.)
+      stokes->add_uniform_force(Tensor<1, 3>({drive.pressure_gradient, 0., 0.}),
+                                drive_load);
     VectorTools::interpolate(mapping,
-                             dof_handler,
+                             velocity_dofs,
                              Functions::ConstantFunction<3>(
-                               std::vector<double>{1., 0., 0., 0.}),
+                               std::vector<double>{1., 0., 0.}),
                              unit_axial_velocity);
   }
 
   void
-  FluidProblem::assemble_jacobian(const bool with_convection)
+  FluidProblem::initialize_velocity_vector(VelocityVector &v) const
   {
-    TimerOutput::Scope scope(timer, "fluid: assemble Jacobian");
-    system_matrix = 0.;
-    schur_matrix  = 0.;
-
-    const double       rho = parameters.density, mu = parameters.viscosity;
-    const QGauss<3>    quadrature(fe.degree + 1);
-    FEValues<3>        fe_values(mapping,
-                          fe,
-                          quadrature,
-                          update_values | update_gradients | update_JxW_values);
-    const unsigned int n = fe.n_dofs_per_cell();
-    FullMatrix<double> cell_matrix(n, n), cell_schur(n, n);
-    std::vector<types::global_dof_index> dof_indices(n);
-    std::vector<Tensor<1, 3>>            phi_v(n), v(quadrature.size());
-    std::vector<Tensor<2, 3>> grad_phi_v(n), grad_v(quadrature.size());
-    std::vector<double>       div_phi_v(n), phi_p(n);
-    std::vector<unsigned int> component(n);
-    for (unsigned int k = 0; k < n; ++k)
-      component[k] = fe.system_to_component_index(k).first;
-
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          cell_matrix = 0.;
-          cell_schur  = 0.;
-          if (with_convection)
-            {
-              fe_values[velocities].get_function_values(current, v);
-              fe_values[velocities].get_function_gradients(current, grad_v);
-            }
-          for (const unsigned int q : fe_values.quadrature_point_indices())
-            {
-              for (unsigned int k = 0; k < n; ++k)
-                {
-                  phi_v[k]      = fe_values[velocities].value(k, q);
-                  grad_phi_v[k] = fe_values[velocities].gradient(k, q);
-                  div_phi_v[k]  = fe_values[velocities].divergence(k, q);
-                  phi_p[k]      = fe_values[pressure].value(k, q);
-                }
-              const double JxW = fe_values.JxW(q);
-              for (unsigned int i = 0; i < n; ++i)
-                for (unsigned int j = 0; j < n; ++j)
-                  {
-                    const unsigned int ci = component[i], cj = component[j];
-                    if (ci == 3 && cj == 3)
-                      cell_schur(i, j) += phi_p[i] * phi_p[j] * JxW;
-                    else if (ci == 3)
-                      cell_matrix(i, j) -= mu * phi_p[i] * div_phi_v[j] * JxW;
-                    else if (cj == 3)
-                      cell_matrix(i, j) -= div_phi_v[i] * phi_p[j] * JxW;
-                    else if (with_convection)
-                      cell_matrix(i, j) +=
-                        (rho / time_step * (phi_v[j] * phi_v[i]) +
-                         mu * scalar_product(grad_phi_v[j], grad_phi_v[i]) +
-                         rho * ((grad_phi_v[j] * v[q] + grad_v[q] * phi_v[j]) *
-                                phi_v[i])) *
-                        JxW;
-                    else if (ci == cj)
-                      cell_matrix(i, j) +=
-                        (rho / time_step * (phi_v[j] * phi_v[i]) +
-                         mu * scalar_product(grad_phi_v[j], grad_phi_v[i])) *
-                        JxW;
-                  }
-            }
-          cell->get_dof_indices(dof_indices);
-          homogeneous_constraints.distribute_local_to_global(cell_matrix,
-                                                             dof_indices,
-                                                             system_matrix);
-          homogeneous_constraints.distribute_local_to_global(cell_schur,
-                                                             dof_indices,
-                                                             schur_matrix);
-        }
-    system_matrix.compress(VectorOperation::add);
-    schur_matrix.compress(VectorOperation::add);
-  }
-
-  void
-  FluidProblem::build_preconditioner()
-  {
-    TimerOutput::Scope scope(timer, "fluid: preconditioner");
-    TrilinosWrappers::PreconditionAMG::AdditionalData amg_data;
-    amg_data.elliptic              = parameters.model == FluidModel::stokes;
-    amg_data.higher_order_elements = true;
-    amg_data.smoother_sweeps       = 2;
-    amg_data.aggregation_threshold = 0.02;
-    std::vector<std::vector<bool>> constant_modes;
-    DoFTools::extract_constant_modes(dof_handler,
-                                     fe.component_mask(velocities),
-                                     constant_modes);
-    amg_data.constant_modes = constant_modes;
-
-    velocity_amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-    velocity_amg->initialize(system_matrix.block(0, 0), amg_data);
-    schur_ilu = std::make_unique<TrilinosWrappers::PreconditionILU>();
-    schur_ilu->initialize(schur_matrix.block(1, 1));
+    stokes->get_matrix_free()->initialize_dof_vector(
+      v, StokesOperator::velocity_index);
   }
 
   double
   FluidProblem::assemble_residual(const bool with_convection)
   {
-    TimerOutput::Scope scope(timer, "fluid: assemble residual");
-    residual = 0.;
-
-    const double       rho = parameters.density, mu = parameters.viscosity;
-    const QGauss<3>    quadrature(fe.degree + 1);
-    FEValues<3>        fe_values(mapping,
-                          fe,
-                          quadrature,
-                          update_values | update_gradients | update_JxW_values);
-    const unsigned int n  = fe.n_dofs_per_cell();
-    const unsigned int nq = quadrature.size();
-    Vector<double>     cell_residual(n);
-    std::vector<types::global_dof_index> dof_indices(n);
-    std::vector<Tensor<1, 3>>            v(nq), v_old(nq);
-    std::vector<Tensor<2, 3>>            grad_v(nq);
-    std::vector<double>                  div_v(nq), p(nq);
-
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          fe_values[velocities].get_function_values(current, v);
-          fe_values[velocities].get_function_values(previous, v_old);
-          fe_values[velocities].get_function_gradients(current, grad_v);
-          fe_values[velocities].get_function_divergences(current, div_v);
-          fe_values[pressure].get_function_values(current, p);
-          cell_residual = 0.;
-          for (const unsigned int q : fe_values.quadrature_point_indices())
-            {
-              Tensor<1, 3> momentum = rho / time_step * (v[q] - v_old[q]);
-              if (with_convection)
-                momentum += rho * (grad_v[q] * v[q]);
-              const double JxW = fe_values.JxW(q);
-              for (unsigned int i = 0; i < n; ++i)
-                cell_residual(i) +=
-                  (momentum * fe_values[velocities].value(i, q) +
-                   mu * scalar_product(grad_v[q],
-                                       fe_values[velocities].gradient(i, q)) -
-                   p[q] * fe_values[velocities].divergence(i, q) -
-                   mu * div_v[q] * fe_values[pressure].value(i, q)) *
-                  JxW;
-            }
-          cell->get_dof_indices(dof_indices);
-          homogeneous_constraints.distribute_local_to_global(cell_residual,
-                                                             dof_indices,
-                                                             residual);
-        }
-    residual.compress(VectorOperation::add);
-    residual -= body_force;
-    residual -= drive_load;
+    TimerOutput::Scope scope(timer, "fluid: residual");
+    stokes->residual(residual, current, previous_velocity, with_convection);
+    residual.block(0) -= body_force;
+    residual.block(0) -= drive_load;
     if (velocity_load)
-      velocity_load(current, residual);
+      velocity_load(current.block(0), residual.block(0));
     return residual.l2_norm();
   }
 
@@ -459,107 +341,44 @@ namespace rbc_ifem
   }
 
   void
-  FluidProblem::add_field_load(const TrilinosWrappers::MPI::BlockVector &v,
-                               TrilinosWrappers::MPI::BlockVector &result) const
+  FluidProblem::add_field_load(const VelocityVector &v,
+                               VelocityVector       &result) const
   {
-    load_owned = v;
-    homogeneous_constraints.distribute(load_owned);
-    load_ghosted = load_owned;
-    velocity_load(load_ghosted, result);
-  }
-
-  namespace
-  {
-    /// J + L of FluidProblem: the stored matrix and the velocity load.
-    template <typename Problem>
-    class OperatorWithLoad
-    {
-    public:
-      OperatorWithLoad(const TrilinosWrappers::BlockSparseMatrix &matrix,
-                       const Problem                             &problem)
-        : matrix(matrix)
-        , problem(problem)
-      {}
-
-      void
-      vmult(TrilinosWrappers::MPI::BlockVector       &dst,
-            const TrilinosWrappers::MPI::BlockVector &src) const
-      {
-        matrix.vmult(dst, src);
-        problem(src, dst);
-      }
-
-    private:
-      const TrilinosWrappers::BlockSparseMatrix &matrix;
-      const Problem                             &problem;
-    };
-  } // namespace
-
-  void
-  FluidProblem::assemble_drive_load()
-  {
-    if (drive.pressure_gradient == 0.)
-      return;
-    const QGauss<3>                      quadrature(fe.degree + 1);
-    FEValues<3>                          fe_values(mapping,
-                          fe,
-                          quadrature,
-                          update_values | update_JxW_values);
-    const unsigned int                   n = fe.n_dofs_per_cell();
-    Vector<double>                       cell_load(n);
-    std::vector<types::global_dof_index> dof_indices(n);
-    const FEValuesExtractors::Scalar     axial_velocity(0);
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          cell_load = 0.;
-          for (const unsigned int q : fe_values.quadrature_point_indices())
-            for (unsigned int i = 0; i < n; ++i)
-              cell_load(i) += drive.pressure_gradient *
-                              fe_values[axial_velocity].value(i, q) *
-                              fe_values.JxW(q);
-          cell->get_dof_indices(dof_indices);
-          homogeneous_constraints.distribute_local_to_global(cell_load,
-                                                             dof_indices,
-                                                             drive_load);
-        }
-    drive_load.compress(VectorOperation::add);
+    load_field.copy_locally_owned_data_from(v);
+    velocity_constraints.distribute(load_field);
+    load_field.update_ghost_values();
+    velocity_load(load_field, result);
   }
 
   std::pair<unsigned int, double>
   FluidProblem::solve_linear_system()
   {
-    TimerOutput::Scope         scope(timer, "fluid: solve");
-    const StokesPreconditioner preconditioner(system_matrix,
-                                              schur_matrix.block(1, 1),
-                                              *velocity_amg,
-                                              *schur_ilu);
+    TimerOutput::Scope scope(timer, "fluid: solve");
     // The tolerance is relative to the largest residual seen, the scale of
     // the problem, not to this step's: a step that changes little then
     // costs few iterations.
     residual_scale = std::max(residual_scale, residual.l2_norm());
-    SolverControl control(parameters.max_linear_iterations,
+    SolverControl             control(parameters.max_linear_iterations,
                           parameters.linear_tolerance * residual_scale);
-    SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(
-      control,
-      SolverFGMRES<TrilinosWrappers::MPI::BlockVector>::AdditionalData(100));
+    SolverFGMRES<FluidVector> solver(
+      control, SolverFGMRES<FluidVector>::AdditionalData(100));
     update = 0.;
     residual *= -1.;
     try
       {
         if (velocity_load)
           {
-            const auto load = [this](const auto &v, auto &result) {
+            const auto load = [this](const VelocityVector &v,
+                                     VelocityVector       &result) {
               add_field_load(v, result);
             };
-            solver.solve(OperatorWithLoad<decltype(load)>(system_matrix, load),
+            solver.solve(OperatorWithLoad<decltype(load)>(*stokes, load),
                          update,
                          residual,
-                         preconditioner);
+                         *preconditioner);
           }
         else
-          solver.solve(system_matrix, update, residual, preconditioner);
+          solver.solve(*stokes, update, residual, *preconditioner);
       }
     catch (const SolverControl::NoConvergence &e)
       {
@@ -573,40 +392,45 @@ namespace rbc_ifem
                 << parameters.linear_tolerance << ")";
         throw SolverFailure(message.str());
       }
-    homogeneous_constraints.distribute(update);
-
-    TrilinosWrappers::MPI::BlockVector next(owned, communicator);
-    next = current;
-    next += update;
-    current = next;
+    velocity_constraints.distribute(update.block(0));
+    pressure_constraints.distribute(update.block(1));
+    current.zero_out_ghost_values();
+    current += update;
+    current.update_ghost_values();
     return {control.last_step(), control.last_value()};
   }
 
   StepReport
   FluidProblem::advance()
   {
-    previous = current;
+    previous_velocity.copy_locally_owned_data_from(current.block(0));
+    previous_velocity.update_ghost_values();
     {
       // Start from the old field with this step's boundary values.
       if (frame_velocity != constrained_frame_velocity)
         {
-          make_constraints(boundary_constraints, 1.);
+          make_velocity_constraints(velocity_dofs, boundary_constraints, 1.);
           constrained_frame_velocity = frame_velocity;
         }
-      TrilinosWrappers::MPI::BlockVector guess(owned, communicator);
-      guess = previous;
+      current.zero_out_ghost_values();
       if (velocity_load)
         {
           // The implicit force makes the flow change smoothly from step to
-          // step: extrapolate it.
+          // step: extrapolate it, 2 vⁿ - vⁿ⁻¹, and keep vⁿ as the earlier.
           if (earlier.size() > 0)
-            guess.sadd(2., -1., earlier);
+            {
+              earlier.sadd(-1., 2., current);
+              current.swap(earlier);
+            }
           else
-            earlier.reinit(owned, communicator);
-          earlier = previous;
+            {
+              earlier.reinit(current);
+              earlier.copy_locally_owned_data_from(current);
+            }
         }
-      boundary_constraints.distribute(guess);
-      current = guess;
+      boundary_constraints.distribute(current.block(0));
+      pressure_constraints.distribute(current.block(1));
+      current.update_ghost_values();
     }
 
     const bool navier_stokes = parameters.model == FluidModel::navier_stokes;
@@ -625,7 +449,7 @@ namespace rbc_ifem
       return report;
     if (!navier_stokes)
       {
-        // Linear: one solve with the stored operator is exact.
+        // Linear: one solve with the Stokes operator is exact.
         const auto [iterations, linear_residual] = solve_linear_system();
         report.linear_iterations                 = iterations;
         report.final_residual                    = linear_residual;
@@ -647,14 +471,14 @@ namespace rbc_ifem
                       << residual_norm;
             throw SolverFailure(message.str());
           }
-        assemble_jacobian(true);
-        build_preconditioner();
+        stokes->set_convection(current);
         const unsigned int iterations = solve_linear_system().first;
         report.linear_iterations += iterations;
         ++report.newton_iterations;
         r                     = check_finite(assemble_residual(true));
         report.final_residual = r;
       }
+    stokes->clear_convection();
     return report;
   }
 
@@ -664,10 +488,13 @@ namespace rbc_ifem
     if (new_time_step == time_step)
       return;
     time_step = new_time_step;
-    if (parameters.model == FluidModel::stokes)
+    if (stokes)
       {
-        assemble_jacobian(false);
-        build_preconditioner();
+        stokes->set_coefficients(parameters.density,
+                                 parameters.viscosity,
+                                 time_step);
+        velocity_multigrid->set_coefficients(parameters.density / time_step,
+                                             parameters.viscosity);
       }
   }
 
@@ -678,14 +505,12 @@ namespace rbc_ifem
       return;
     if (current.size() > 0)
       {
-        TrilinosWrappers::MPI::BlockVector seen_from_new_frame(owned,
-                                                               communicator);
-        seen_from_new_frame = current;
-        seen_from_new_frame.add(frame_velocity - velocity, unit_axial_velocity);
-        current = seen_from_new_frame;
+        current.zero_out_ghost_values();
+        current.block(0).add(frame_velocity - velocity, unit_axial_velocity);
+        current.update_ghost_values();
       }
     if (earlier.size() > 0)
-      earlier.add(frame_velocity - velocity, unit_axial_velocity);
+      earlier.block(0).add(frame_velocity - velocity, unit_axial_velocity);
     frame_velocity = velocity;
   }
 
@@ -696,35 +521,33 @@ namespace rbc_ifem
   }
 
   std::vector<double>
-  FluidProblem::gather(const TrilinosWrappers::MPI::BlockVector &v) const
+  FluidProblem::gather(const FluidVector &v) const
   {
-    std::vector<double>     values(dof_handler.n_dofs(), 0.);
+    std::vector<double>     values(n_dofs(), 0.);
     types::global_dof_index offset = 0;
     for (unsigned int b = 0; b < 2; ++b)
       {
-        for (const auto i : owned[b])
+        for (const auto i : v.block(b).locally_owned_elements())
           values[offset + i] = v.block(b)(i);
-        offset += owned[b].size();
+        offset += v.block(b).size();
       }
     Utilities::MPI::sum(values, communicator, values);
     return values;
   }
 
   void
-  FluidProblem::scatter(const std::vector<double>          &values,
-                        TrilinosWrappers::MPI::BlockVector &v) const
+  FluidProblem::scatter(const std::vector<double> &values, FluidVector &v) const
   {
-    AssertDimension(values.size(), dof_handler.n_dofs());
-    TrilinosWrappers::MPI::BlockVector owned_values(owned, communicator);
-    types::global_dof_index            offset = 0;
+    AssertDimension(values.size(), n_dofs());
+    v.zero_out_ghost_values();
+    types::global_dof_index offset = 0;
     for (unsigned int b = 0; b < 2; ++b)
       {
-        for (const auto i : owned[b])
-          owned_values.block(b)(i) = values[offset + i];
-        offset += owned[b].size();
+        for (const auto i : v.block(b).locally_owned_elements())
+          v.block(b)(i) = values[offset + i];
+        offset += v.block(b).size();
       }
-    owned_values.compress(VectorOperation::insert);
-    v = owned_values;
+    v.update_ghost_values();
   }
 
   FluidState
@@ -745,35 +568,41 @@ namespace rbc_ifem
     scatter(state.solution, current);
     if (!state.earlier_solution.empty())
       {
-        earlier.reinit(owned, communicator);
+        earlier.reinit(current);
         scatter(state.earlier_solution, earlier);
+        earlier.zero_out_ghost_values();
       }
     frame_velocity = state.frame_velocity;
     residual_scale = state.residual_scale;
   }
 
   void
-  FluidProblem::set_body_force(const TrilinosWrappers::MPI::BlockVector &load)
+  FluidProblem::set_body_force(const VelocityVector &load)
   {
-    body_force = load;
+    body_force.copy_locally_owned_data_from(load);
   }
 
   FlowMeasures
   FluidProblem::measure() const
   {
-    TimerOutput::Scope        scope(timer, "fluid: measures");
-    const QGauss<3>           quadrature(fe.degree + 1);
-    const QGauss<2>           face_quadrature(fe.degree + 1);
-    FEValues<3>               fe_values(mapping,
-                          fe,
+    TimerOutput::Scope               scope(timer, "fluid: measures");
+    const FEValuesExtractors::Vector velocities(0);
+    const QGauss<3>                  quadrature(3);
+    const QGauss<2>                  face_quadrature(3);
+    FEValues<3>                      fe_values(mapping,
+                          velocity_fe,
                           quadrature,
                           update_values | update_gradients | update_JxW_values);
-    FEFaceValues<3>           face_values(mapping,
-                                fe,
+    FEFaceValues<3>                  face_values(mapping,
+                                velocity_fe,
                                 face_quadrature,
                                 update_values | update_normal_vectors |
                                   update_JxW_values);
-    std::vector<Tensor<1, 3>> v(quadrature.size()),
+    FEFaceValues<3>                  pressure_face_values(mapping,
+                                         pressure_fe,
+                                         face_quadrature,
+                                         update_values);
+    std::vector<Tensor<1, 3>>        v(quadrature.size()),
       v_face(face_quadrature.size());
     std::vector<double> div_v(quadrature.size()),
       p_face(face_quadrature.size());
@@ -783,12 +612,13 @@ namespace rbc_ifem
     // Integrals of p and of 1 over the inlet and the outlet.
     double inlet_pressure = 0., inlet_area = 0., outlet_pressure = 0.,
            outlet_area = 0.;
-    for (const auto &cell : dof_handler.active_cell_iterators())
+    for (const auto &cell : velocity_dofs.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           fe_values.reinit(cell);
-          fe_values[velocities].get_function_values(current, v);
-          fe_values[velocities].get_function_divergences(current, div_v);
+          fe_values[velocities].get_function_values(current.block(0), v);
+          fe_values[velocities].get_function_divergences(current.block(0),
+                                                         div_v);
           for (const unsigned int q : fe_values.quadrature_point_indices())
             {
               divergence_squared += div_v[q] * div_v[q] * fe_values.JxW(q);
@@ -802,8 +632,16 @@ namespace rbc_ifem
                 const bool outlet =
                   cell->face(f)->boundary_id() == FluidBoundary::outlet;
                 face_values.reinit(cell, f);
-                face_values[velocities].get_function_values(current, v_face);
-                face_values[pressure].get_function_values(current, p_face);
+                pressure_face_values.reinit(
+                  DoFHandler<3>::active_cell_iterator(&triangulation,
+                                                      cell->level(),
+                                                      cell->index(),
+                                                      &pressure_dofs),
+                  f);
+                face_values[velocities].get_function_values(current.block(0),
+                                                            v_face);
+                pressure_face_values.get_function_values(current.block(1),
+                                                         p_face);
                 for (const unsigned int q :
                      face_values.quadrature_point_indices())
                   {
@@ -839,38 +677,49 @@ namespace rbc_ifem
                           const unsigned int counter,
                           const FieldData   &field_data) const
   {
-    TimerOutput::Scope       scope(timer, "fluid: output");
-    std::vector<std::string> names(3, "velocity");
-    names.emplace_back("pressure");
-    std::vector<DataComponentInterpretation::DataComponentInterpretation>
+    TimerOutput::Scope             scope(timer, "fluid: output");
+    const std::vector<std::string> names(3, "velocity");
+    const std::vector<DataComponentInterpretation::DataComponentInterpretation>
       interpretation(3,
                      DataComponentInterpretation::component_is_part_of_vector);
-    interpretation.push_back(DataComponentInterpretation::component_is_scalar);
 
     const LabVelocity lab_velocity(frame_velocity);
     DataOut<3>        data_out;
     data_out.set_flags(fast_vtk_flags());
-    data_out.attach_dof_handler(dof_handler);
-    data_out.add_data_vector(current,
+    data_out.attach_triangulation(triangulation);
+    data_out.add_data_vector(velocity_dofs,
+                             current.block(0),
                              names,
-                             DataOut<3>::type_dof_data,
                              interpretation);
-    data_out.add_data_vector(current, lab_velocity);
+    data_out.add_data_vector(pressure_dofs, current.block(1), "pressure");
+    data_out.add_data_vector(velocity_dofs, current.block(0), lab_velocity);
     data_out.build_patches(mapping, 2);
     return write_vtu_pieces(
       data_out, directory, "flow", counter, communicator, field_data);
   }
 
-  const TrilinosWrappers::MPI::BlockVector &
+  const FluidVector &
   FluidProblem::solution() const
   {
     return current;
   }
 
   const DoFHandler<3> &
-  FluidProblem::get_dof_handler() const
+  FluidProblem::velocity_dof_handler() const
   {
-    return dof_handler;
+    return velocity_dofs;
+  }
+
+  const DoFHandler<3> &
+  FluidProblem::pressure_dof_handler() const
+  {
+    return pressure_dofs;
+  }
+
+  types::global_dof_index
+  FluidProblem::n_dofs() const
+  {
+    return velocity_dofs.n_dofs() + pressure_dofs.n_dofs();
   }
 
   const MappingQ<3> &
@@ -880,14 +729,26 @@ namespace rbc_ifem
   }
 
   const AffineConstraints<double> &
-  FluidProblem::zero_constraints() const
+  FluidProblem::velocity_zero_constraints() const
   {
-    return homogeneous_constraints;
+    return velocity_constraints;
   }
 
-  const std::vector<IndexSet> &
-  FluidProblem::owned_partitioning() const
+  std::vector<types::global_dof_index>
+  FluidProblem::multigrid_dofs() const
   {
-    return owned;
+    return velocity_multigrid->n_dofs_per_level();
+  }
+
+  std::string
+  multigrid_levels_text(const FluidProblem &fluid)
+  {
+    const std::vector<types::global_dof_index> n_dofs = fluid.multigrid_dofs();
+    std::ostringstream                         text;
+    text << "velocity multigrid: " << n_dofs.size() << " levels of";
+    for (unsigned int l = 0; l < n_dofs.size(); ++l)
+      text << (l == 0 ? " " : ", ") << n_dofs[l];
+    text << " DoFs";
+    return text.str();
   }
 } // namespace rbc_ifem

@@ -90,8 +90,16 @@ namespace rbc_ifem
       std::hypot((S[0][0] - S[1][1]) / 2., S[0][1]);
     const double L = std::sqrt(mean + half_difference),
                  B = std::sqrt(std::max(0., mean - half_difference));
+    // The long axis at ±π/2 (a cell facing the flow) is one axis: an
+    // off-diagonal of round-off size must not pick the sign, or the same
+    // cell reads -π/2 in one run and π/2 in the next. Counted as zero, it
+    // gives π/2, the end of the range (-π/2, π/2] that belongs to it.
+    const double off_diagonal =
+      std::abs(S[0][1]) <= 1e-12 * (std::abs(S[0][0]) + std::abs(S[1][1])) ?
+        0. :
+        S[0][1];
     return {(L - B) / (L + B),
-            0.5 * std::atan2(2. * S[0][1], S[0][0] - S[1][1])};
+            0.5 * std::atan2(2. * off_diagonal, S[0][0] - S[1][1])};
   }
 
   Clearance

@@ -242,7 +242,7 @@ namespace rbc_ifem
     fluid.setup();
     coupling = std::make_unique<ImmersedCoupling>(triangulation,
                                                   fluid.get_mapping(),
-                                                  fluid.get_dof_handler(),
+                                                  fluid.velocity_dof_handler(),
                                                   domain.period);
     try
       {
@@ -254,7 +254,7 @@ namespace rbc_ifem
                          e.what());
       }
     mesh_size = coupling->mesh_size_at_points();
-    load.reinit(fluid.owned_partitioning(), communicator);
+    fluid.initialize_velocity_vector(load);
     const CouplingTimeStepLimit stable(parameters.fluid.viscosity,
                                        parameters.membrane,
                                        cells.point_spacing(),
@@ -266,7 +266,8 @@ namespace rbc_ifem
       setup_semi_implicit_load();
 
     pcout << "  fluid mesh: " << triangulation.n_active_cells() << " cells, "
-          << fluid.get_dof_handler().n_dofs() << " DoFs" << std::endl;
+          << fluid.n_dofs() << " DoFs; " << multigrid_levels_text(fluid)
+          << std::endl;
     report_startup(stable);
     if (parameters.immersed.diffusion_interval > 0)
       check_uptake_input();
@@ -343,10 +344,8 @@ namespace rbc_ifem
   void
   IFEMSimulation::setup_semi_implicit_load()
   {
-    semi_implicit = std::make_unique<SemiImplicitLoad>(*coupling,
-                                                       cells,
-                                                       fluid.zero_constraints(),
-                                                       time_step);
+    semi_implicit = std::make_unique<SemiImplicitLoad>(
+      *coupling, cells, fluid.velocity_zero_constraints(), time_step);
     fluid.set_velocity_load([this](const auto &v, auto &result) {
       TimerOutput::Scope scope(timer, "coupling: implicit force load");
       (*semi_implicit)(v, result);
@@ -375,7 +374,7 @@ namespace rbc_ifem
     {
       TimerOutput::Scope scope(timer, "coupling: spread");
       load = 0.;
-      coupling->spread(forces, fluid.zero_constraints(), load);
+      coupling->spread(forces, fluid.velocity_zero_constraints(), load);
       fluid.set_body_force(load);
     }
 
@@ -392,7 +391,7 @@ namespace rbc_ifem
     std::vector<Tensor<1, 3>> velocities;
     {
       TimerOutput::Scope scope(timer, "coupling: interpolate");
-      velocities = coupling->interpolate(fluid.solution());
+      velocities = coupling->interpolate(fluid.solution().block(0));
     }
     double largest_move = 0., mean_axial_velocity = 0.;
     for (const Tensor<1, 3> &v : velocities)
@@ -692,7 +691,7 @@ namespace rbc_ifem
     check_resumed_parameters(checkpoint.parameters, path);
     const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
     if (checkpoint.n_ranks != n_ranks ||
-        checkpoint.fluid.solution.size() != fluid.get_dof_handler().n_dofs() ||
+        checkpoint.fluid.solution.size() != fluid.n_dofs() ||
         checkpoint.positions.size() != cells.size() ||
         checkpoint.positions[0].size() != cells.positions()[0].size())
       throw InputError("Immersed cells/Resume",
@@ -702,7 +701,7 @@ namespace rbc_ifem
                          std::to_string(checkpoint.fluid.solution.size()) +
                          " fluid DoFs; this run has " +
                          std::to_string(n_ranks) + " rank(s) and " +
-                         std::to_string(fluid.get_dof_handler().n_dofs()) +
+                         std::to_string(fluid.n_dofs()) +
                          ": resume on the same number of ranks.");
     if (checkpoint.record.step >= parameters.time.n_steps)
       throw InputError("Time/Number of steps",

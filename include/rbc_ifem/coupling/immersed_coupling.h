@@ -1,14 +1,15 @@
 #ifndef rbc_ifem_coupling_immersed_coupling_h
 #define rbc_ifem_coupling_immersed_coupling_h
 
+#include <rbc_ifem/fluid/fluid_vectors.h>
+
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
-#include <deal.II/distributed/shared_tria.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/mapping.h>
 #include <deal.II/grid/grid_tools_cache.h>
+#include <deal.II/grid/tria.h>
 #include <deal.II/lac/affine_constraints.h>
-#include <deal.II/lac/trilinos_parallel_block_vector.h>
 #include <deal.II/particles/particle_handler.h>
 
 #include <optional>
@@ -46,15 +47,15 @@ namespace rbc_ifem
   {
   public:
     /**
-     * The first three components of the fluid FE must be the velocity. With
+     * @p velocity_dof_handler is the fluid's velocity space. With
      * a @p period along x (a periodic segment), every point is placed where
      * it lies in the segment (wrap_into_segment()): a membrane stays whole
      * for its mechanics while its points are found, spread and
      * interpolated across the ends.
      */
-    ImmersedCoupling(const parallel::shared::Triangulation<3> &triangulation,
-                     const Mapping<3>                         &mapping,
-                     const DoFHandler<3>         &fluid_dof_handler,
+    ImmersedCoupling(const Triangulation<3>      &triangulation,
+                     const Mapping<3>            &mapping,
+                     const DoFHandler<3>         &velocity_dof_handler,
                      const std::optional<double> &period = std::nullopt);
 
     /**
@@ -69,20 +70,21 @@ namespace rbc_ifem
     place(const std::vector<Point<3>> &points);
 
     /**
-     * Add f_J = Σ_I F_I · φ_J(x_I) to the velocity block of @p load (owned
-     * layout, compressed here), condensed with @p constraints.
+     * Add f_J = Σ_I F_I · φ_J(x_I) to @p load (the layout of
+     * FluidProblem::initialize_velocity_vector(), its ghost entries zero;
+     * compressed here), condensed with @p constraints.
      */
     void
-    spread(const std::vector<Tensor<1, 3>>    &forces,
-           const AffineConstraints<double>    &constraints,
-           TrilinosWrappers::MPI::BlockVector &load) const;
+    spread(const std::vector<Tensor<1, 3>> &forces,
+           const AffineConstraints<double> &constraints,
+           VelocityVector                  &load) const;
 
     /**
-     * v_I = Σ_J v_J φ_J(x_I) at every point, from the velocity of
-     * @p solution (ghosted); the same result on every rank.
+     * v_I = Σ_J v_J φ_J(x_I) at every point, from @p velocity (ghosted);
+     * the same result on every rank.
      */
     std::vector<Tensor<1, 3>>
-    interpolate(const TrilinosWrappers::MPI::BlockVector &solution) const;
+    interpolate(const VelocityVector &velocity) const;
 
     unsigned int
     n_points() const;
@@ -107,11 +109,11 @@ namespace rbc_ifem
     void
     for_each_particle_cell(const CellFunction &f) const;
 
-    const parallel::shared::Triangulation<3> &triangulation;
-    const DoFHandler<3>                      &dof_handler;
-    const std::optional<double>               period;
-    const GridTools::Cache<3>                 cache;
-    Particles::ParticleHandler<3>             particles;
+    const Triangulation<3>       &triangulation;
+    const DoFHandler<3>          &dof_handler;
+    const std::optional<double>   period;
+    const GridTools::Cache<3>     cache;
+    Particles::ParticleHandler<3> particles;
     /// Per point, the fluid cell it was last found in: where the next search
     /// starts.
     std::vector<Triangulation<3>::active_cell_iterator> cell_hints;

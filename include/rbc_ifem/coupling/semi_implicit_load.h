@@ -5,7 +5,6 @@
 #include <rbc_ifem/coupling/immersed_coupling.h>
 
 #include <deal.II/lac/affine_constraints.h>
-#include <deal.II/lac/trilinos_parallel_block_vector.h>
 
 
 namespace rbc_ifem
@@ -34,10 +33,10 @@ namespace rbc_ifem
                      const AffineConstraints<double> &constraints,
                      const double                    &time_step);
 
-    /// Add L @p v (ghosted) to @p result (owned, compressed here).
+    /// Add L @p v (ghosted) to @p result (ghost entries zero, compressed
+    /// here).
     void
-    operator()(const TrilinosWrappers::MPI::BlockVector &v,
-               TrilinosWrappers::MPI::BlockVector       &result) const;
+    operator()(const VelocityVector &v, VelocityVector &result) const;
 
   private:
     const ImmersedCoupling          &coupling;

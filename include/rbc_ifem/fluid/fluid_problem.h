@@ -2,20 +2,19 @@
 #define rbc_ifem_fluid_fluid_problem_h
 
 #include <rbc_ifem/base/field_data.h>
+#include <rbc_ifem/fluid/fluid_vectors.h>
 #include <rbc_ifem/fluid/parameters.h>
 #include <rbc_ifem/geometry/parameters.h>
 
 #include <deal.II/base/function.h>
 #include <deal.II/base/timer.h>
-#include <deal.II/distributed/shared_tria.h>
 #include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria.h>
 #include <deal.II/lac/affine_constraints.h>
-#include <deal.II/lac/trilinos_block_sparse_matrix.h>
-#include <deal.II/lac/trilinos_parallel_block_vector.h>
-#include <deal.II/lac/trilinos_precondition.h>
 
 #include <functional>
 #include <limits>
@@ -128,9 +127,9 @@ namespace rbc_ifem
 
   /**
    * Everything a restart needs to continue a FluidProblem: the solution
-   * (every entry, in the DoF order of the same mesh on the same number of
-   * ranks), the frame velocity, and the residual scale the solver's
-   * tolerance refers to.
+   * (every entry, the velocity's in their DoF order and then the
+   * pressure's, for the same mesh on the same number of ranks), the frame
+   * velocity, and the residual scale the solver's tolerance refers to.
    */
   struct FluidState
   {
@@ -149,10 +148,14 @@ namespace rbc_ifem
     }
   };
 
+  class StokesOperator;
+  class StokesPreconditioner;
+  class VelocityMultigrid;
+
   /**
    * The plasma flow in the capillary lumen (doc/design.md, Section 2): velocity
-   * v and pressure p in Taylor-Hood Q2-Q1 on a parallel::shared mesh from
-   * create_fluid_mesh(), with a quadratic mapping for the curved wall.
+   * v and pressure p in Taylor-Hood Q2-Q1 (one DoFHandler each) on a mesh
+   * from create_fluid_mesh(), with a quadratic mapping for the curved wall.
    *
    * Each time step is backward Euler for
    *
@@ -163,12 +166,17 @@ namespace rbc_ifem
    * weighs them alike (without it, ∇·v rows are ~10³ times larger than the
    * momentum rows in these units and the pressure converges poorly),
    * solved by Newton's method on the residual R(v, p): the right-hand side
-   * of every linear solve is the residual, assembled cell by cell, and
-   * updates satisfy homogeneous constraints. In Stokes mode the Jacobian is
-   * the constant Stokes operator: it and its preconditioner are built once
-   * in setup(), and a step is one residual assembly and one FGMRES solve,
-   * which solves the linear problem exactly. Navier-Stokes mode reassembles
-   * the Jacobian (with convection) and its AMG in every Newton iteration.
+   * of every linear solve is the residual, and updates satisfy homogeneous
+   * constraints. Every operator is matrix-free (StokesOperator): the
+   * residual is one pass over the cells with sum factorisation, not an
+   * assembly. The linear solver is FGMRES with StokesPreconditioner:
+   * geometric multigrid on the velocity (VelocityMultigrid, on the meshes
+   * of a global coarsening of this one), the pressure mass matrix for the
+   * Schur complement. In Stokes mode the Jacobian is the Stokes operator
+   * and a step is one residual and one FGMRES solve, which solves the
+   * linear problem exactly; Navier-Stokes mode linearises the convection
+   * about the Newton iterate and keeps the Stokes multigrid as the
+   * velocity preconditioner (Re ≪ 1 in a capillary).
    *
    * Boundary conditions (FlowDrive): in the capillary no slip on the wall,
    * the Poiseuille profile of mean speed ū at the inlet, both shifted by
@@ -182,25 +190,33 @@ namespace rbc_ifem
    * Poiseuille flow with p = 0 at the outlet).
    *
    * The membrane forces of the immersed method enter through
-   * set_body_force(): a load vector f_J = Σ_I F_I φ_J(x_I) in this space.
+   * set_body_force(): a load vector f_J = Σ_I F_I φ_J(x_I) of the velocity
+   * space.
    */
   class FluidProblem
   {
   public:
-    FluidProblem(const parallel::shared::Triangulation<3> &triangulation,
-                 const FluidParameters                    &parameters,
-                 const FlowDrive                          &drive,
-                 const double                              time_step,
-                 TimerOutput                              &timer);
+    /**
+     * The flow on @p triangulation (serial or parallel::shared; it must
+     * outlive the problem). Its multigrid levels are made from it by
+     * global coarsening.
+     */
+    FluidProblem(const Triangulation<3> &triangulation,
+                 const FluidParameters  &parameters,
+                 const FlowDrive        &drive,
+                 const double            time_step,
+                 TimerOutput            &timer);
 
-    /// Distribute DoFs, build constraints, matrices and (Stokes) the
-    /// preconditioner.
+    ~FluidProblem();
+
+    /// Distribute DoFs, build constraints, the operators and the
+    /// multigrid hierarchy.
     void
     setup();
 
     /**
-     * Change the time step Δt [s]. In Stokes mode the operator and its
-     * preconditioner depend on it, so they are rebuilt (only if Δt changed).
+     * Change the time step Δt [s]. The velocity operator and its multigrid
+     * smoothers depend on it, so they are updated (only if Δt changed).
      */
     void
     set_time_step(const double time_step);
@@ -225,26 +241,31 @@ namespace rbc_ifem
     void
     set_state(const FluidState &state);
 
+    /// @p v with the layout of the velocity block: owned entries and the
+    /// ghosts a rank's cells touch. Load vectors are made with it.
+    void
+    initialize_velocity_vector(VelocityVector &v) const;
+
     /**
-     * Body-force hook: a load vector with the layout of solution(), velocity
-     * block only, condensed with zero_constraints() (assemble it with
-     * zero_constraints().distribute_local_to_global()). Used from the next
-     * step on, until replaced.
+     * Body-force hook: a load vector of the velocity space (layout of
+     * initialize_velocity_vector()), condensed with
+     * velocity_zero_constraints() (assemble it with
+     * velocity_zero_constraints().distribute_local_to_global(), then
+     * compress). Used from the next step on, until replaced.
      */
     void
-    set_body_force(const TrilinosWrappers::MPI::BlockVector &load);
+    set_body_force(const VelocityVector &load);
 
     /**
      * A load that depends linearly on the new velocity, f = f_body - L v:
      * the semi-implicit coupling's L = Δt Sᵀ K S, the membrane forces'
      * change over the step (SemiImplicitLoad). The function adds L v to its
-     * second argument (the layout of the body force: velocity block, owned,
-     * condensed with zero_constraints()) for the field v of its first
+     * second argument (the layout of the body force, condensed with
+     * velocity_zero_constraints()) for the velocity v of its first
      * (ghosted, constraints applied).
      */
     using VelocityLoad =
-      std::function<void(const TrilinosWrappers::MPI::BlockVector &,
-                         TrilinosWrappers::MPI::BlockVector &)>;
+      std::function<void(const VelocityVector &, VelocityVector &)>;
 
     /**
      * Use @p load in the residual and the operator of every solve from the
@@ -272,48 +293,56 @@ namespace rbc_ifem
               const unsigned int counter,
               const FieldData   &field_data = {}) const;
 
-    const TrilinosWrappers::MPI::BlockVector &
+    /// (v, p), ghosted, with the constraints applied.
+    const FluidVector &
     solution() const;
     const DoFHandler<3> &
-    get_dof_handler() const;
+    velocity_dof_handler() const;
+    const DoFHandler<3> &
+    pressure_dof_handler() const;
+    /// Velocity and pressure DoFs together.
+    types::global_dof_index
+    n_dofs() const;
     const MappingQ<3> &
     get_mapping() const;
+    /// Hanging nodes, periodicity and zero velocity on the Dirichlet
+    /// boundaries: the constraints of load vectors and updates.
     const AffineConstraints<double> &
-    zero_constraints() const;
-    /// Owned index sets of the velocity and pressure blocks.
-    const std::vector<IndexSet> &
-    owned_partitioning() const;
+    velocity_zero_constraints() const;
+    /// The DoFs of each multigrid level of the velocity, coarsest first.
+    std::vector<types::global_dof_index>
+    multigrid_dofs() const;
 
   private:
     void
     setup_dofs();
     void
-    setup_matrices();
-    /// Hanging nodes + the Dirichlet values of the drive in the frame U_frame, scaled by @p scale.
+    setup_solver();
+    /**
+     * Hanging nodes, periodicity, and on the Dirichlet boundaries the
+     * drive's velocity in the frame U_frame scaled by @p scale, of the
+     * velocity on @p dof_handler (a level's or the fine one).
+     */
     void
-    make_constraints(AffineConstraints<double> &constraints,
-                     const double               scale) const;
+    make_velocity_constraints(const DoFHandler<3>       &dof_handler,
+                              AffineConstraints<double> &constraints,
+                              const double               scale) const;
+    /// Hanging nodes and periodicity of the pressure.
     void
-    assemble_jacobian(const bool with_convection);
-    void
-    build_preconditioner();
+    make_pressure_constraints();
     double
     assemble_residual(const bool with_convection);
-    /// The load of FlowDrive::pressure_gradient, ∫ G e_x · φ_J, once.
-    void
-    assemble_drive_load();
-    /// Every entry of @p v (owned) in DoF order, the same on every rank.
+    /// Every entry of @p v (owned) in DoF order, velocity then pressure,
+    /// the same on every rank.
     std::vector<double>
-    gather(const TrilinosWrappers::MPI::BlockVector &v) const;
+    gather(const FluidVector &v) const;
     /// The owned entries of @p values (as gather() gives them) into @p v.
     void
-    scatter(const std::vector<double>          &values,
-            TrilinosWrappers::MPI::BlockVector &v) const;
+    scatter(const std::vector<double> &values, FluidVector &v) const;
     /// Add the velocity load's L v to @p result for @p v (owned, any
     /// values at constrained DoFs: zero constraints are applied first).
     void
-    add_field_load(const TrilinosWrappers::MPI::BlockVector &v,
-                   TrilinosWrappers::MPI::BlockVector       &result) const;
+    add_field_load(const VelocityVector &v, VelocityVector &result) const;
     /// Solve (J + L) δ = -R and update; returns FGMRES's iterations and
     /// final residual.
     std::pair<unsigned int, double>
@@ -325,15 +354,15 @@ namespace rbc_ifem
     const MPI_Comm        communicator;
     TimerOutput          &timer;
 
-    const parallel::shared::Triangulation<3> &triangulation;
-    const MappingQ<3>                         mapping;
-    const FESystem<3>                         fe;
-    DoFHandler<3>                             dof_handler;
+    const Triangulation<3> &triangulation;
+    const MappingQ<3>       mapping;
+    const FESystem<3>       velocity_fe;
+    const FE_Q<3>           pressure_fe;
+    DoFHandler<3>           velocity_dofs;
+    DoFHandler<3>           pressure_dofs;
 
-    std::vector<IndexSet>     owned;
-    std::vector<IndexSet>     relevant;
-    IndexSet                  relevant_dofs;
-    AffineConstraints<double> homogeneous_constraints;
+    AffineConstraints<double> velocity_constraints; ///< homogeneous
+    AffineConstraints<double> pressure_constraints;
     /// Hanging nodes and this frame velocity's boundary values; rebuilt
     /// only when the frame velocity changes.
     AffineConstraints<double> boundary_constraints;
@@ -342,30 +371,33 @@ namespace rbc_ifem
       std::numeric_limits<double>::quiet_NaN();
     double residual_scale = 0.; ///< largest residual norm so far
 
-    TrilinosWrappers::BlockSparseMatrix system_matrix; ///< the Jacobian
-    TrilinosWrappers::BlockSparseMatrix schur_matrix;  ///< M_p in block (1,1)
-    std::unique_ptr<TrilinosWrappers::PreconditionAMG> velocity_amg;
-    std::unique_ptr<TrilinosWrappers::PreconditionILU> schur_ilu;
+    /// The levels below the fine mesh, coarsest first.
+    std::vector<std::shared_ptr<const Triangulation<3>>> coarser_meshes;
+    std::unique_ptr<StokesOperator>                      stokes;
+    std::unique_ptr<VelocityMultigrid>                   velocity_multigrid;
+    std::unique_ptr<StokesPreconditioner>                preconditioner;
 
-    TrilinosWrappers::MPI::BlockVector current;  ///< ghosted (v, p)
-    TrilinosWrappers::MPI::BlockVector previous; ///< ghosted (vⁿ, pⁿ)
-    /// Owned (vⁿ⁻¹, pⁿ⁻¹) in the current frame, kept with a velocity load
-    /// (size 0 until its first step): the first guess of a step is then
+    FluidVector current; ///< (v, p), ghosted
+    /// vⁿ, ghosted: the velocity of the last step.
+    VelocityVector previous_velocity;
+    /// (vⁿ⁻¹, pⁿ⁻¹) in the current frame, kept with a velocity load (size
+    /// 0 until its first step): the first guess of a step is then
     /// 2 vⁿ - vⁿ⁻¹, which halves the semi-implicit coupling's iterations.
-    TrilinosWrappers::MPI::BlockVector earlier;
-    TrilinosWrappers::MPI::BlockVector residual;   ///< owned
-    TrilinosWrappers::MPI::BlockVector update;     ///< owned
-    TrilinosWrappers::MPI::BlockVector body_force; ///< owned load vector
-    VelocityLoad                       velocity_load;
-    /// Scratch of add_field_load(): owned and ghosted copies of v.
-    mutable TrilinosWrappers::MPI::BlockVector load_owned, load_ghosted;
-    TrilinosWrappers::MPI::BlockVector drive_load; ///< owned, of the drive
-    /// The matched inlet and outlet faces of a periodic segment.
-    std::vector<GridTools::PeriodicFacePair<DoFHandler<3>::cell_iterator>>
-      periodic_faces;
-    TrilinosWrappers::MPI::BlockVector
-      unit_axial_velocity; ///< owned, v = e_x, p = 0
+    FluidVector    earlier;
+    FluidVector    residual;
+    FluidVector    update;
+    VelocityVector body_force;
+    VelocityLoad   velocity_load;
+    /// Scratch of add_field_load(): a copy of v with its constraints.
+    mutable VelocityVector load_field;
+    VelocityVector         drive_load; ///< of the drive's pressure gradient
+    VelocityVector         unit_axial_velocity; ///< v = e_x
   };
+
+  /// "velocity multigrid: N levels of a, b, ... DoFs", coarsest first, for
+  /// the log.
+  std::string
+  multigrid_levels_text(const FluidProblem &fluid);
 } // namespace rbc_ifem
 
 #endif

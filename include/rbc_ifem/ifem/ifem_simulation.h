@@ -177,7 +177,7 @@ namespace rbc_ifem
     bool   contacts  = false;
     double mesh_size = 0.; ///< fluid h at the membranes [µm]
     double time_step = 0.; ///< Δt [s]: Time/Time step, or auto's choice
-    TrilinosWrappers::MPI::BlockVector load; ///< the spread forces, owned
+    VelocityVector load;   ///< the spread forces
   };
 } // namespace rbc_ifem
 

@@ -105,7 +105,7 @@ main(int argc, char *argv[])
   fluid.setup();
   ImmersedCoupling coupling(triangulation,
                             fluid.get_mapping(),
-                            fluid.get_dof_handler());
+                            fluid.velocity_dof_handler());
   coupling.place(cells.points());
   const CouplingTimeStepLimit limit(parameters.fluid.viscosity,
                                     parameters.membrane,
@@ -113,10 +113,10 @@ main(int argc, char *argv[])
                                     coupling.mesh_size_at_points());
   const double                dt = 20. * limit.limit;
   fluid.set_time_step(dt);
-  TrilinosWrappers::MPI::BlockVector load(fluid.owned_partitioning(),
-                                          communicator);
+  VelocityVector load;
+  fluid.initialize_velocity_vector(load);
   fluid.set_velocity_load(
-    SemiImplicitLoad(coupling, cells, fluid.zero_constraints(), dt));
+    SemiImplicitLoad(coupling, cells, fluid.velocity_zero_constraints(), dt));
   std::cout << cells.n_points() << " membrane points, explicit limit "
             << limit.limit << " s, Δt = " << dt << " s; radius spread "
             << initial_spread << ", energy of the sphere " << sphere_energy
@@ -147,13 +147,13 @@ main(int argc, char *argv[])
         break;
       cells.linearize();
       load = 0.;
-      coupling.spread(forces, fluid.zero_constraints(), load);
+      coupling.spread(forces, fluid.velocity_zero_constraints(), load);
       fluid.set_body_force(load);
       const StepReport report = fluid.advance();
       if (step % 5 == 0)
         std::cout << "    " << report.linear_iterations
                   << " FGMRES iterations\n";
-      cells.move(coupling.interpolate(fluid.solution()), dt);
+      cells.move(coupling.interpolate(fluid.solution().block(0)), dt);
       coupling.place(cells.points());
     }
 

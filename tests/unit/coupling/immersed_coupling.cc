@@ -52,14 +52,12 @@ namespace
       fluid->setup();
     }
 
-    /// A vector with the solution's layout, owned or ghosted.
-    TrilinosWrappers::MPI::BlockVector
-    vector(const bool ghosted) const
+    /// A zero vector of the velocity space.
+    VelocityVector
+    vector() const
     {
-      if (ghosted)
-        return fluid->solution(); // its layout; every caller overwrites it
-      TrilinosWrappers::MPI::BlockVector v;
-      v.reinit(fluid->owned_partitioning(), MPI_COMM_WORLD);
+      VelocityVector v;
+      fluid->initialize_velocity_vector(v);
       return v;
     }
 
@@ -85,37 +83,37 @@ namespace
     return nodes;
   }
 
-  /// A velocity field u(x) with zero pressure, as a (v, p) function.
+  /// A velocity field u(x) as a Function.
   class VelocityField : public Function<3>
   {
   public:
     explicit VelocityField(
       const std::function<Tensor<1, 3>(const Point<3> &)> &u)
-      : Function<3>(4)
+      : Function<3>(3)
       , u(u)
     {}
 
     double
     value(const Point<3> &p, const unsigned int component) const override
     {
-      return component < 3 ? u(p)[component] : 0.;
+      return u(p)[component];
     }
 
   private:
     const std::function<Tensor<1, 3>(const Point<3> &)> u;
   };
 
-  /// u interpolated into the fluid space (owned entries).
-  TrilinosWrappers::MPI::BlockVector
+  /// u interpolated into the velocity space.
+  VelocityVector
   interpolated_field(const Flow                                          &flow,
                      const std::function<Tensor<1, 3>(const Point<3> &)> &u)
   {
-    TrilinosWrappers::MPI::BlockVector owned = flow.vector(false);
+    VelocityVector v = flow.vector();
     VectorTools::interpolate(flow.fluid->get_mapping(),
-                             flow.fluid->get_dof_handler(),
+                             flow.fluid->velocity_dof_handler(),
                              VelocityField(u),
-                             owned);
-    return owned;
+                             v);
+    return v;
   }
 
   void
@@ -124,7 +122,7 @@ namespace
     Flow             flow(1e-4);
     ImmersedCoupling coupling(flow.triangulation,
                               flow.fluid->get_mapping(),
-                              flow.fluid->get_dof_handler());
+                              flow.fluid->velocity_dof_handler());
     const Point<3>   center(10., 0.4, -0.3);
     const auto       x = membrane_nodes(center);
     coupling.place(x);
@@ -156,7 +154,7 @@ namespace
 
     AffineConstraints<double> none;
     none.close();
-    TrilinosWrappers::MPI::BlockVector load = flow.vector(false);
+    VelocityVector load = flow.vector();
     coupling.spread(F, none, load);
     for (unsigned int d = 0; d < 3; ++d)
       {
@@ -181,16 +179,14 @@ namespace
 
     // A random v with the fluid's constraints (hanging nodes, zero on the
     // Dirichlet boundary), spread with the same constraints.
-    TrilinosWrappers::MPI::BlockVector v = flow.vector(false);
+    VelocityVector v = flow.vector();
     for (const auto i : v.locally_owned_elements())
       v(i) = uniform(random);
-    v.compress(VectorOperation::insert);
-    flow.fluid->zero_constraints().distribute(v);
-    TrilinosWrappers::MPI::BlockVector v_ghosted = flow.vector(true);
-    v_ghosted                                    = v;
-    TrilinosWrappers::MPI::BlockVector condensed = flow.vector(false);
-    coupling.spread(F, flow.fluid->zero_constraints(), condensed);
-    const auto v_at_points = coupling.interpolate(v_ghosted);
+    flow.fluid->velocity_zero_constraints().distribute(v);
+    v.update_ghost_values();
+    VelocityVector condensed = flow.vector();
+    coupling.spread(F, flow.fluid->velocity_zero_constraints(), condensed);
+    const auto v_at_points = coupling.interpolate(v);
     double     power = 0., scale = 0.;
     for (unsigned int i = 0; i < x.size(); ++i)
       {
@@ -217,7 +213,7 @@ namespace
     Flow             flow(dt);
     ImmersedCoupling coupling(flow.triangulation,
                               flow.fluid->get_mapping(),
-                              flow.fluid->get_dof_handler());
+                              flow.fluid->velocity_dof_handler());
     flow.fluid->advance();
     auto       x  = membrane_nodes(Point<3>(6., 0.5, 0.));
     const auto x0 = x;
@@ -225,7 +221,7 @@ namespace
     const unsigned int n_steps = 40;
     for (unsigned int step = 0; step < n_steps; ++step)
       {
-        const auto v = coupling.interpolate(flow.fluid->solution());
+        const auto v = coupling.interpolate(flow.fluid->solution().block(0));
         for (unsigned int i = 0; i < x.size(); ++i)
           x[i] += dt * v[i];
         coupling.place(x);
@@ -257,7 +253,7 @@ namespace
     Flow             flow(1e-4);
     ImmersedCoupling coupling(flow.triangulation,
                               flow.fluid->get_mapping(),
-                              flow.fluid->get_dof_handler());
+                              flow.fluid->velocity_dof_handler());
     auto             x = membrane_nodes(Point<3>(10., 0., 0.));
     coupling.place(x);
     coupling.place(x); // points on edges of curved cells must not get lost

@@ -12,6 +12,7 @@
 #include <rbc_ifem/geometry/capillary_mesh.h>
 
 #include "check.h"
+#include "velocity_error.h"
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/numerics/vector_tools.h>
@@ -68,20 +69,7 @@ namespace
   double
   velocity_error(const Flow &flow, const PoiseuilleFlow &exact, const double u)
   {
-    const ComponentSelectFunction<3> velocity_only(std::make_pair(0u, 3u), 4);
-    Vector<float> cellwise(flow.triangulation.n_active_cells());
-    VectorTools::integrate_difference(flow.fluid->get_mapping(),
-                                      flow.fluid->get_dof_handler(),
-                                      flow.fluid->solution(),
-                                      exact,
-                                      cellwise,
-                                      QGauss<3>(5),
-                                      VectorTools::L2_norm,
-                                      &velocity_only);
-    return VectorTools::compute_global_error(flow.triangulation,
-                                             cellwise,
-                                             VectorTools::L2_norm) /
-           poiseuille_norm(u);
+    return velocity_l2_error(*flow.fluid, exact) / poiseuille_norm(u);
   }
 
   /// max |a - b| over one block (0: velocity, 1: pressure) of two solutions.
@@ -90,9 +78,7 @@ namespace
                      const FluidProblem &b,
                      const unsigned int  block)
   {
-    TrilinosWrappers::MPI::BlockVector difference(a.owned_partitioning(),
-                                                  MPI_COMM_WORLD);
-    difference = a.solution();
+    FluidVector difference(a.solution());
     difference -= b.solution();
     return difference.block(block).linfty_norm();
   }
@@ -130,7 +116,7 @@ namespace
         const double e_q = std::abs(m.flow_rate - exact_flow) / exact_flow;
         const double e_div = m.divergence_l2 / poiseuille_norm(u);
         std::cout << std::setw(7) << level << std::setw(8)
-                  << flow.fluid->get_dof_handler().n_dofs() << std::scientific
+                  << flow.fluid->n_dofs() << std::scientific
                   << std::setprecision(2) << std::setw(12) << e_v << " ("
                   << (level == 0 ? "   -" : order(coarse_velocity, e_v)) << ')'
                   << std::setw(12) << e_p << std::setw(14) << e_q
@@ -168,17 +154,14 @@ namespace
     lab.fluid->advance();
     moving.fluid->advance();
 
-    TrilinosWrappers::MPI::BlockVector shift(moving.fluid->owned_partitioning(),
-                                             MPI_COMM_WORLD);
+    FluidVector    difference(moving.fluid->solution());
+    VelocityVector shift(difference.block(0));
     VectorTools::interpolate(moving.fluid->get_mapping(),
-                             moving.fluid->get_dof_handler(),
+                             moving.fluid->velocity_dof_handler(),
                              Functions::ConstantFunction<3>(
-                               std::vector<double>{U, 0., 0., 0.}),
+                               std::vector<double>{U, 0., 0.}),
                              shift);
-    TrilinosWrappers::MPI::BlockVector difference(
-      moving.fluid->owned_partitioning(), MPI_COMM_WORLD);
-    difference = moving.fluid->solution();
-    difference += shift;
+    difference.block(0) += shift;
     difference -= lab.fluid->solution();
     const double drop = 8. * f.viscosity * u * L / (R * R);
     check.at_most("max |v_frame + U - v_lab| [µm/s]",
@@ -206,18 +189,20 @@ namespace
     Flow         flow(f, 1, 1.);
 
     // The load vector ∫ G e_x · φ_J, assembled as the coupling will do it.
-    const FluidProblem                &fluid = *flow.fluid;
-    TrilinosWrappers::MPI::BlockVector load(fluid.owned_partitioning(),
-                                            MPI_COMM_WORLD);
-    const QGauss<3>                    quadrature(3);
-    FEValues<3>                        fe_values(fluid.get_mapping(),
-                          fluid.get_dof_handler().get_fe(),
+    const FluidProblem &fluid = *flow.fluid;
+    VelocityVector      load;
+    fluid.initialize_velocity_vector(load);
+    const QGauss<3>    quadrature(3);
+    FEValues<3>        fe_values(fluid.get_mapping(),
+                          fluid.velocity_dof_handler().get_fe(),
                           quadrature,
                           update_values | update_JxW_values);
-    const unsigned int n = fluid.get_dof_handler().get_fe().n_dofs_per_cell();
-    Vector<double>     cell_load(n);
+    const unsigned int n =
+      fluid.velocity_dof_handler().get_fe().n_dofs_per_cell();
+    Vector<double>                       cell_load(n);
     std::vector<types::global_dof_index> dof_indices(n);
-    for (const auto &cell : fluid.get_dof_handler().active_cell_iterators())
+    for (const auto &cell :
+         fluid.velocity_dof_handler().active_cell_iterators())
       if (cell->is_locally_owned())
         {
           fe_values.reinit(cell);
@@ -227,9 +212,8 @@ namespace
               cell_load(i) +=
                 G * fe_values.shape_value_component(i, q, 0) * fe_values.JxW(q);
           cell->get_dof_indices(dof_indices);
-          fluid.zero_constraints().distribute_local_to_global(cell_load,
-                                                              dof_indices,
-                                                              load);
+          fluid.velocity_zero_constraints().distribute_local_to_global(
+            cell_load, dof_indices, load);
         }
     load.compress(VectorOperation::add);
 

@@ -152,8 +152,12 @@ main(int argc, char *argv[])
     }
   catch (const std::exception &e)
     {
-      if (root)
-        std::cerr << "rbc-ifem: internal error: " << e.what() << std::endl;
+      // It may have happened on this rank alone, with the others waiting
+      // for it in a collective step: say where, and stop them all.
+      std::cerr << "rbc-ifem: internal error on rank "
+                << Utilities::MPI::this_mpi_process(communicator) << ": "
+                << e.what() << std::endl;
+      MPI_Abort(communicator, 2);
       return 2;
     }
   return 0;

@@ -110,7 +110,7 @@ main(int argc, char *argv[])
   FluidProblem fluid(triangulation, parameters.fluid, domain.drive, dt, timer);
   fluid.setup();
 
-  // The membrane points as particles on the fluid mesh: spreading and
+  // The membrane points located on the fluid mesh: spreading and
   // interpolation use the same shape functions φ_J(x_I), so they are
   // adjoint (the power the membrane gives the fluid is the power the
   // fluid takes).

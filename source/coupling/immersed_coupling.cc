@@ -2,24 +2,35 @@
 #include <rbc_ifem/geometry/capillary_mesh.h>
 
 #include <deal.II/base/mpi.h>
-#include <deal.II/grid/filtered_iterator.h>
-#include <deal.II/grid/grid_tools.h>
+#include <deal.II/fe/mapping.h>
+#include <deal.II/numerics/rtree.h>
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
 namespace rbc_ifem
 {
+  namespace
+  {
+    /// How far outside the reference cell a point may be found (round-off
+    /// at faces and curved edges).
+    constexpr double inside_tolerance = 1e-10;
+    /// How far inside a cell a point must be to be in no other.
+    constexpr double       clearly_inside = 1e-8;
+    constexpr unsigned int nobody = std::numeric_limits<unsigned int>::max();
+  } // namespace
+
   ImmersedCoupling::ImmersedCoupling(const Triangulation<3> &triangulation,
                                      const Mapping<3>       &mapping,
                                      const DoFHandler<3> &velocity_dof_handler,
                                      const std::optional<double> &period)
     : triangulation(triangulation)
+    , mapping(mapping)
     , dof_handler(velocity_dof_handler)
     , period(period)
     , cache(triangulation, mapping)
-    , particles(triangulation, mapping)
   {
     const FiniteElement<3> &fe = dof_handler.get_fe();
     for (unsigned int k = 0; k < fe.n_dofs_per_cell(); ++k)
@@ -27,58 +38,172 @@ namespace rbc_ifem
         k, fe.system_to_component_index(k).first);
   }
 
+  std::optional<Point<3>>
+  ImmersedCoupling::reference_in(const CellIterator &cell,
+                                 const Point<3>     &p) const
+  {
+    if (!cell->is_locally_owned())
+      return std::nullopt;
+    try
+      {
+        const Point<3> reference = mapping.transform_real_to_unit_cell(cell, p);
+        if (GeometryInfo<3>::is_inside_unit_cell(reference, inside_tolerance))
+          return reference;
+      }
+    catch (const Mapping<3>::ExcTransformationFailed &)
+      {
+        // far outside this cell
+      }
+    return std::nullopt;
+  }
+
+  std::optional<std::pair<ImmersedCoupling::CellIterator, Point<3>>>
+  ImmersedCoupling::choose(const std::vector<CellIterator> &candidates,
+                           const Point<3>                  &p) const
+  {
+    // A point clearly inside one cell is in no other; one on a face or an
+    // edge (within round-off) goes to the candidate of lowest index, so
+    // that the choice does not depend on where the search started (a
+    // resumed run places its points afresh and must find the same cells).
+    std::optional<std::pair<CellIterator, Point<3>>> best;
+    for (const CellIterator &cell : candidates)
+      if (const auto reference = reference_in(cell, p))
+        {
+          if (GeometryInfo<3>::is_inside_unit_cell(*reference, -clearly_inside))
+            return std::make_pair(cell, *reference);
+          if (!best ||
+              cell->active_cell_index() < best->first->active_cell_index())
+            best = std::make_pair(cell, *reference);
+        }
+    return best;
+  }
+
+  std::optional<std::pair<ImmersedCoupling::CellIterator, Point<3>>>
+  ImmersedCoupling::locate_near(const CellIterator &cell,
+                                const Point<3>     &p) const
+  {
+    std::vector<CellIterator> candidates{cell};
+    const auto               &cells_at_vertex = cache.get_vertex_to_cell_map();
+    for (const unsigned int v : cell->vertex_indices())
+      for (const auto &neighbor : cells_at_vertex[cell->vertex_index(v)])
+        if (std::find(candidates.begin(), candidates.end(), neighbor) ==
+            candidates.end())
+          candidates.push_back(neighbor);
+    for (const CellIterator &candidate : candidates)
+      if (const auto reference = reference_in(candidate, p))
+        if (GeometryInfo<3>::is_inside_unit_cell(*reference, -clearly_inside))
+          return std::make_pair(candidate, *reference);
+    // On a face or an edge: the search of every rank decides (place()),
+    // as it would for a point placed afresh.
+    return std::nullopt;
+  }
+
+  std::optional<std::pair<ImmersedCoupling::CellIterator, Point<3>>>
+  ImmersedCoupling::locate_anywhere(const Point<3> &p) const
+  {
+    namespace bgi = boost::geometry::index;
+    std::vector<CellIterator> candidates;
+    for (const auto &[box, cell] :
+         cache.get_locally_owned_cell_bounding_boxes_rtree() |
+           bgi::adaptors::queried(bgi::intersects(p)))
+      candidates.push_back(cell);
+    return choose(candidates, p);
+  }
+
   void
   ImmersedCoupling::place(const std::vector<Point<3>> &points)
   {
-    particles.clear_particles();
-    cell_hints.resize(points.size());
-    for (unsigned int i = 0; i < points.size(); ++i)
+    const MPI_Comm     communicator = triangulation.get_communicator();
+    const unsigned int rank = Utilities::MPI::this_mpi_process(communicator);
+    n_membrane_points       = points.size();
+    owner_cell.resize(n_membrane_points, triangulation.end());
+    reference_points.resize(n_membrane_points);
+
+    std::vector<Point<3>> wrapped(n_membrane_points);
+    for (unsigned int i = 0; i < n_membrane_points; ++i)
+      wrapped[i] = wrap_into_segment(points[i], period);
+
+    // First the points this rank held, near where they were; then every
+    // rank looks for the points nobody kept among its own cells. The
+    // lowest rank that found a point keeps it.
+    std::vector<unsigned int> claims(n_membrane_points, nobody);
+    const auto keep = [&](const unsigned int i, const auto &found) {
+      if (found)
+        {
+          owner_cell[i]       = found->first;
+          reference_points[i] = found->second;
+          claims[i]           = rank;
+        }
+      else
+        owner_cell[i] = triangulation.end();
+    };
+    for (unsigned int i = 0; i < n_membrane_points; ++i)
+      if (owner_cell[i] != triangulation.end())
+        keep(i, locate_near(owner_cell[i], wrapped[i]));
+    Utilities::MPI::min(claims, communicator, claims);
+    if (std::count(claims.begin(), claims.end(), nobody) > 0)
       {
-        const Point<3> point = wrap_into_segment(points[i], period);
-        const auto [cell, reference] =
-          GridTools::find_active_cell_around_point(cache, point, cell_hints[i]);
-        if (cell == triangulation.end())
+        for (unsigned int i = 0; i < n_membrane_points; ++i)
+          if (claims[i] == nobody)
+            keep(i, locate_anywhere(wrapped[i]));
+        Utilities::MPI::min(claims, communicator, claims);
+      }
+    for (unsigned int i = 0; i < n_membrane_points; ++i)
+      {
+        if (claims[i] == nobody)
           throw std::runtime_error(
             "membrane point " + std::to_string(i) + " at (" +
             std::to_string(points[i][0]) + ", " + std::to_string(points[i][1]) +
             ", " + std::to_string(points[i][2]) +
             ") µm lies outside the fluid domain: a cell has left it "
             "or touched its wall.");
-        cell_hints[i] = cell;
-        if (cell->is_locally_owned())
-          particles.insert_particle(point, reference, i, cell);
+        if (claims[i] != rank)
+          owner_cell[i] = triangulation.end();
       }
-    n_membrane_points = points.size();
+
+    // Group this rank's points by cell, and take the shape values there.
+    points_by_cell.clear();
+    for (unsigned int i = 0; i < n_membrane_points; ++i)
+      if (owner_cell[i] != triangulation.end())
+        points_by_cell.push_back(i);
+    std::sort(points_by_cell.begin(),
+              points_by_cell.end(),
+              [this](const unsigned int a, const unsigned int b) {
+                return owner_cell[a]->active_cell_index() <
+                       owner_cell[b]->active_cell_index();
+              });
+    point_cells.clear();
+    cell_start.clear();
+    for (unsigned int k = 0; k < points_by_cell.size(); ++k)
+      if (k == 0 ||
+          owner_cell[points_by_cell[k]] != owner_cell[points_by_cell[k - 1]])
+        {
+          point_cells.push_back(owner_cell[points_by_cell[k]]);
+          cell_start.push_back(k);
+        }
+    cell_start.push_back(points_by_cell.size());
 
     const FiniteElement<3> &fe = dof_handler.get_fe();
-    shape_values.clear();
-    shape_values.reserve(particles.n_locally_owned_particles() *
-                         velocity_shape_functions.size());
-    for_each_particle_cell([&](const auto &, const auto &in_cell) {
-      for (const auto &p : in_cell)
-        for (const auto &[k, c] : velocity_shape_functions)
-          shape_values.push_back(
-            fe.shape_value_component(k, p.get_reference_location(), c));
-    });
+    shape_values.resize(points_by_cell.size() *
+                        velocity_shape_functions.size());
+    auto phi = shape_values.begin();
+    for (const unsigned int i : points_by_cell)
+      for (const auto &[k, c] : velocity_shape_functions)
+        *phi++ = fe.shape_value_component(k, reference_points[i], c);
   }
 
   template <typename CellFunction>
   void
-  ImmersedCoupling::for_each_particle_cell(const CellFunction &f) const
+  ImmersedCoupling::for_each_point_cell(const CellFunction &f) const
   {
     std::vector<types::global_dof_index> dofs(
       dof_handler.get_fe().n_dofs_per_cell());
-    // Particles are stored cell by cell: take one cell's at a time.
-    auto particle = particles.begin();
-    while (particle != particles.end())
+    for (unsigned int c = 0; c < point_cells.size(); ++c)
       {
-        const auto cell = particle->get_surrounding_cell();
-        const typename DoFHandler<3>::active_cell_iterator dof_cell(
-          *cell, &dof_handler);
+        const DoFHandler<3>::active_cell_iterator dof_cell(*point_cells[c],
+                                                           &dof_handler);
         dof_cell->get_dof_indices(dofs);
-        const auto in_cell = particles.particles_in_cell(cell);
-        f(dofs, in_cell);
-        particle = in_cell.end();
+        f(dofs, cell_start[c], cell_start[c + 1]);
       }
   }
 
@@ -90,13 +215,14 @@ namespace rbc_ifem
     AssertDimension(forces.size(), n_membrane_points);
     Vector<double> cell_load(dof_handler.get_fe().n_dofs_per_cell());
     auto           phi = shape_values.begin();
-    for_each_particle_cell([&](const auto &dofs, const auto &in_cell) {
-      cell_load = 0.;
-      for (const auto &p : in_cell)
-        for (const auto &[k, c] : velocity_shape_functions)
-          cell_load[k] += forces[p.get_id()][c] * *phi++;
-      constraints.distribute_local_to_global(cell_load, dofs, load);
-    });
+    for_each_point_cell(
+      [&](const auto &dofs, const unsigned int first, const unsigned int last) {
+        cell_load = 0.;
+        for (unsigned int k = first; k < last; ++k)
+          for (const auto &[j, c] : velocity_shape_functions)
+            cell_load[j] += forces[points_by_cell[k]][c] * *phi++;
+        constraints.distribute_local_to_global(cell_load, dofs, load);
+      });
     load.compress(VectorOperation::add);
   }
 
@@ -107,13 +233,14 @@ namespace rbc_ifem
     std::vector<double> velocity(3 * n_membrane_points, 0.);
     std::vector<double> cell_values(dof_handler.get_fe().n_dofs_per_cell());
     auto                phi = shape_values.begin();
-    for_each_particle_cell([&](const auto &dofs, const auto &in_cell) {
-      for (const auto &[k, c] : velocity_shape_functions)
-        cell_values[k] = velocity_field(dofs[k]);
-      for (const auto &p : in_cell)
-        for (const auto &[k, c] : velocity_shape_functions)
-          velocity[3 * p.get_id() + c] += cell_values[k] * *phi++;
-    });
+    for_each_point_cell(
+      [&](const auto &dofs, const unsigned int first, const unsigned int last) {
+        for (const auto &[j, c] : velocity_shape_functions)
+          cell_values[j] = velocity_field(dofs[j]);
+        for (unsigned int k = first; k < last; ++k)
+          for (const auto &[j, c] : velocity_shape_functions)
+            velocity[3 * points_by_cell[k] + c] += cell_values[j] * *phi++;
+      });
     Utilities::MPI::sum(velocity, triangulation.get_communicator(), velocity);
     std::vector<Tensor<1, 3>> result(n_membrane_points);
     for (unsigned int i = 0; i < n_membrane_points; ++i)
@@ -128,19 +255,24 @@ namespace rbc_ifem
     return n_membrane_points;
   }
 
+  unsigned int
+  ImmersedCoupling::n_locally_owned_points() const
+  {
+    return points_by_cell.size();
+  }
+
+  const std::vector<unsigned int> &
+  ImmersedCoupling::locally_owned_point_indices() const
+  {
+    return points_by_cell;
+  }
+
   double
   ImmersedCoupling::mesh_size_at_points() const
   {
-    // Every rank knows every point's cell: no communication.
     double h = 0.;
-    for (const auto &cell : cell_hints)
+    for (const CellIterator &cell : point_cells)
       h = std::max(h, cell->minimum_vertex_distance());
-    return h;
-  }
-
-  const Particles::ParticleHandler<3> &
-  ImmersedCoupling::get_particle_handler() const
-  {
-    return particles;
+    return Utilities::MPI::max(h, triangulation.get_communicator());
   }
 } // namespace rbc_ifem

@@ -71,21 +71,6 @@ namespace rbc_ifem
         for (const std::vector<CellId> &cells : refinements)
           refine_cells_and_neighbors(mesh, cells);
       }
-
-      /// The periodic segment's end faces, matched on @p mesh.
-      static void
-      add_end_periodicity(Triangulation<3> &mesh)
-      {
-        std::vector<
-          GridTools::PeriodicFacePair<Triangulation<3>::cell_iterator>>
-          ends;
-        GridTools::collect_periodic_faces(mesh,
-                                          DiffusionBoundary::inlet_end,
-                                          DiffusionBoundary::outlet_end,
-                                          /*direction=*/0,
-                                          ends);
-        mesh.add_periodicity(ends);
-      }
     };
 
     /**
@@ -132,7 +117,7 @@ namespace rbc_ifem
           communicator);
       create_capillary_mesh(*mesh, description);
       if (recipe.geometry.period())
-        UptakeMeshRecipe::add_end_periodicity(*mesh);
+        add_end_periodicity(*mesh);
       return mesh;
     }
 

@@ -3,6 +3,7 @@
 #include <rbc_ifem/base/solver_failure.h>
 #include <rbc_ifem/experiments/flow_experiment.h>
 #include <rbc_ifem/geometry/capillary_mesh.h>
+#include <rbc_ifem/geometry/mesh_hierarchy.h>
 
 #include <cmath>
 
@@ -17,10 +18,7 @@ namespace rbc_ifem
                  prm,
                  communicator,
                  ParametersFile::before_work)
-    , triangulation(communicator,
-                    Triangulation<3>::none,
-                    false,
-                    parallel::shared::Triangulation<3>::partition_metis)
+    , triangulation(communicator)
     , fluid(triangulation,
             parameters.fluid,
             FlowDrive::capillary(parameters.fluid, parameters.geometry),
@@ -37,14 +35,23 @@ namespace rbc_ifem
           << f.density * std::abs(f.inlet_mean_speed) * 2. *
                parameters.geometry.capillary_radius / f.viscosity
           << std::endl;
+    std::vector<std::shared_ptr<const Triangulation<3>>> coarser_meshes;
     {
       TimerOutput::Scope scope(timer, "fluid mesh");
-      create_fluid_mesh(triangulation,
-                        parameters.geometry,
-                        parameters.mesh.fluid_global_refinements);
+      const bool         periodic = parameters.geometry.periodic;
+      coarser_meshes              = create_distributed_mesh_hierarchy(
+        triangulation,
+        [&](Triangulation<3> &serial) {
+          create_fluid_mesh(serial,
+                            parameters.geometry,
+                            parameters.mesh.fluid_global_refinements);
+          if (periodic)
+            add_end_periodicity(serial);
+        },
+        periodic);
     }
-    fluid.setup();
-    pcout << "  mesh: " << triangulation.n_active_cells() << " cells; "
+    fluid.setup(coarser_meshes);
+    pcout << "  mesh: " << triangulation.n_global_active_cells() << " cells; "
           << fluid.n_dofs() << " DoFs ("
           << fluid.velocity_dof_handler().n_dofs() << " velocity, "
           << fluid.pressure_dof_handler().n_dofs() << " pressure); "

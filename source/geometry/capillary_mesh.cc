@@ -209,6 +209,21 @@ namespace rbc_ifem
     triangulation.refine_global(n_global_refinements);
   }
 
+  void
+  add_end_periodicity(Triangulation<3> &mesh)
+  {
+    static_assert(FluidBoundary::inlet == DiffusionBoundary::inlet_end &&
+                  FluidBoundary::outlet == DiffusionBoundary::outlet_end);
+    std::vector<GridTools::PeriodicFacePair<Triangulation<3>::cell_iterator>>
+      ends;
+    GridTools::collect_periodic_faces(mesh,
+                                      FluidBoundary::inlet,
+                                      FluidBoundary::outlet,
+                                      /*direction=*/0,
+                                      ends);
+    mesh.add_periodicity(ends);
+  }
+
   Point<3>
   wrap_into_segment(const Point<3> &p, const std::optional<double> &period)
   {

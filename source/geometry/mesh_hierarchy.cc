@@ -1,8 +1,10 @@
+#include <rbc_ifem/geometry/capillary_mesh.h>
 #include <rbc_ifem/geometry/mesh_hierarchy.h>
 
 #include <deal.II/distributed/shared_tria.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/manifold_lib.h>
+#include <deal.II/grid/tria_description.h>
 
 namespace rbc_ifem
 {
@@ -70,6 +72,64 @@ namespace rbc_ifem
         for (unsigned int k = l + 1; k < n_levels; ++k)
           level->coarsen_global();
         levels[l] = level;
+      }
+    return levels;
+  }
+
+  namespace
+  {
+    /// Build @p mesh from the serial mesh @p make builds on rank 0.
+    void
+    distribute(parallel::fullydistributed::Triangulation<3>  &mesh,
+               const std::function<void(Triangulation<3> &)> &make,
+               const bool                                     periodic)
+    {
+      const MPI_Comm     communicator = mesh.get_communicator();
+      const unsigned int n_ranks =
+        Utilities::MPI::n_mpi_processes(communicator);
+      // Hanging nodes need the description's levels, which limit the level
+      // difference at vertices to one.
+      const auto description = TriangulationDescription::Utilities::
+        create_description_from_triangulation_in_groups<3, 3>(
+          make,
+          [n_ranks](Triangulation<3> &serial,
+                    const MPI_Comm &,
+                    const unsigned int) {
+            GridTools::partition_triangulation(n_ranks, serial);
+          },
+          communicator,
+          n_ranks,
+          Triangulation<3>::none,
+          TriangulationDescription::Settings::construct_multigrid_hierarchy);
+      create_capillary_mesh(mesh, description);
+      if (periodic)
+        add_end_periodicity(mesh);
+    }
+  } // namespace
+
+  std::vector<std::shared_ptr<const Triangulation<3>>>
+  create_distributed_mesh_hierarchy(
+    parallel::fullydistributed::Triangulation<3>  &fine,
+    const std::function<void(Triangulation<3> &)> &make,
+    const bool                                     periodic)
+  {
+    distribute(fine, make, periodic);
+    const unsigned int n_levels = fine.n_global_levels();
+    std::vector<std::shared_ptr<const Triangulation<3>>> levels;
+    for (unsigned int l = 0; l + 1 < n_levels; ++l)
+      {
+        auto level =
+          std::make_shared<parallel::fullydistributed::Triangulation<3>>(
+            fine.get_communicator());
+        distribute(
+          *level,
+          [&](Triangulation<3> &serial) {
+            make(serial);
+            for (unsigned int k = l + 1; k < n_levels; ++k)
+              serial.coarsen_global();
+          },
+          periodic);
+        levels.push_back(level);
       }
     return levels;
   }

@@ -10,6 +10,7 @@
 #include <rbc_ifem/diffusion/co_diffusion.h>
 #include <rbc_ifem/diffusion/uptake.h>
 #include <rbc_ifem/geometry/capillary_mesh.h>
+#include <rbc_ifem/geometry/mesh_hierarchy.h>
 #include <rbc_ifem/ifem/ifem_simulation.h>
 
 #include <boost/archive/binary_iarchive.hpp>
@@ -149,10 +150,7 @@ namespace rbc_ifem
     , domain(domain)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
     , timer(timer)
-    , triangulation(communicator,
-                    Triangulation<3>::none,
-                    false,
-                    parallel::shared::Triangulation<3>::partition_metis)
+    , triangulation(communicator)
     , fluid(triangulation,
             parameters.fluid,
             domain.drive,
@@ -231,15 +229,25 @@ namespace rbc_ifem
         pcout << "  squeezed into the lumen in " << stages << " stages"
               << std::endl;
       }
+    std::vector<std::shared_ptr<const Triangulation<3>>> coarser_meshes;
     {
-      TimerOutput::Scope scope(timer, "fluid mesh");
-      domain.create_mesh(triangulation);
-      refine_near_points(triangulation,
-                         points_in_segment(cells.points(), domain.period),
-                         parameters.mesh.band_width,
-                         parameters.mesh.fluid_band_refinements);
+      TimerOutput::Scope          scope(timer, "fluid mesh");
+      const std::vector<Point<3>> band =
+        points_in_segment(cells.points(), domain.period);
+      coarser_meshes = create_distributed_mesh_hierarchy(
+        triangulation,
+        [&](Triangulation<3> &serial) {
+          domain.create_mesh(serial);
+          if (domain.period)
+            add_end_periodicity(serial);
+          refine_near_points(serial,
+                             band,
+                             parameters.mesh.band_width,
+                             parameters.mesh.fluid_band_refinements);
+        },
+        domain.period.has_value());
     }
-    fluid.setup();
+    fluid.setup(coarser_meshes);
     coupling = std::make_unique<ImmersedCoupling>(triangulation,
                                                   fluid.get_mapping(),
                                                   fluid.velocity_dof_handler(),
@@ -265,9 +273,9 @@ namespace rbc_ifem
     if (parameters.immersed.coupling == CouplingScheme::semi_implicit)
       setup_semi_implicit_load();
 
-    pcout << "  fluid mesh: " << triangulation.n_active_cells() << " cells, "
-          << fluid.n_dofs() << " DoFs; " << multigrid_levels_text(fluid)
-          << std::endl;
+    pcout << "  fluid mesh: " << triangulation.n_global_active_cells()
+          << " cells, " << fluid.n_dofs() << " DoFs; "
+          << multigrid_levels_text(fluid) << std::endl;
     report_startup(stable);
     if (parameters.immersed.diffusion_interval > 0)
       check_uptake_input();

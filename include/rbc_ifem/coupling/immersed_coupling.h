@@ -10,7 +10,6 @@
 #include <deal.II/grid/grid_tools_cache.h>
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/affine_constraints.h>
-#include <deal.II/particles/particle_handler.h>
 
 #include <optional>
 #include <vector>
@@ -22,10 +21,10 @@ namespace rbc_ifem
   /**
    * The immersed coupling of membranes and plasma (doc/design.md, "Immersed
    * coupling", steps 3 and 5): the membrane points, every node of every
-   * cell, as the particles of a Particles::ParticleHandler<3> on the fluid
-   * mesh, with the point's index as the particle id. The handler knows each
-   * point's fluid cell and reference position, and hands points over
-   * between cells and ranks as they move.
+   * cell, located on the fluid mesh. Each point belongs to the rank whose
+   * cell holds it, which knows the cell and the point's reference
+   * position there; the mesh may be parallel::shared or fully distributed,
+   * since a rank searches only its own cells.
    *
    * Both directions use the same values φ_J(x_I) of the fluid's velocity
    * shape functions at the points:
@@ -40,15 +39,15 @@ namespace rbc_ifem
    *
    * The membranes are small, so every rank keeps the positions, forces and
    * velocities of all points (the same on every rank); a rank computes only
-   * with the particles in its own cells, and interpolated velocities are
+   * with the points in its own cells, and interpolated velocities are
    * summed over the ranks.
    */
   class ImmersedCoupling
   {
   public:
     /**
-     * @p velocity_dof_handler is the fluid's velocity space. With
-     * a @p period along x (a periodic segment), every point is placed where
+     * @p velocity_dof_handler is the fluid's velocity space. With a
+     * @p period along x (a periodic segment), every point is placed where
      * it lies in the segment (wrap_into_segment()): a membrane stays whole
      * for its mechanics while its points are found, spread and
      * interpolated across the ends.
@@ -60,11 +59,13 @@ namespace rbc_ifem
 
     /**
      * Place the points, at the start and after every move (the same list on
-     * every rank). Every rank finds every point's cell (the mesh is shared,
-     * the search starts from the point's previous cell) and keeps the points
-     * in its own cells, so points pass between cells and ranks without
-     * communication. Throws std::runtime_error naming the first point that
-     * lies outside the fluid domain, on every rank alike.
+     * every rank). A point a rank held stays with it if it is still in the
+     * same cell or one that shares a vertex with it (most points, most
+     * steps: one inverse mapping each); the others are looked for by every
+     * rank among its own cells (an R-tree of their bounding boxes). A point
+     * on a face between two ranks' cells goes to the lower rank, so each
+     * point is on exactly one rank. Throws std::runtime_error naming the
+     * first point that lies outside the fluid domain, on every rank alike.
      */
     void
     place(const std::vector<Point<3>> &points);
@@ -89,41 +90,80 @@ namespace rbc_ifem
     unsigned int
     n_points() const;
 
+    /// The points in this rank's cells.
+    unsigned int
+    n_locally_owned_points() const;
+
+    /// The indices of the points in this rank's cells, cell by cell.
+    const std::vector<unsigned int> &
+    locally_owned_point_indices() const;
+
     /**
      * The fluid mesh size the membranes see: the largest edge length
      * (shortest vertex distance) of the fluid cells that hold points [µm].
+     * Collective.
      */
     double
     mesh_size_at_points() const;
 
-    const Particles::ParticleHandler<3> &
-    get_particle_handler() const;
-
   private:
+    using CellIterator = Triangulation<3>::active_cell_iterator;
+
     /**
-     * Call @p f(dofs, particles) for every cell of this rank that holds
-     * particles, with the DoF indices of the cell and the range of its
-     * particles.
+     * The reference position of @p p in the locally owned @p cell, if it
+     * lies there.
+     */
+    std::optional<Point<3>>
+    reference_in(const CellIterator &cell, const Point<3> &p) const;
+
+    /**
+     * The cell of @p candidates that holds @p p: the one it is clearly
+     * inside, or, for a point on a face or an edge, the one of lowest
+     * index; none if no candidate holds it.
+     */
+    std::optional<std::pair<CellIterator, Point<3>>>
+    choose(const std::vector<CellIterator> &candidates,
+           const Point<3>                  &p) const;
+
+    /// @p p clearly inside @p cell or a locally owned cell sharing a vertex
+    /// with it; none for a point on their faces.
+    std::optional<std::pair<CellIterator, Point<3>>>
+    locate_near(const CellIterator &cell, const Point<3> &p) const;
+
+    /// @p p in any locally owned cell.
+    std::optional<std::pair<CellIterator, Point<3>>>
+    locate_anywhere(const Point<3> &p) const;
+
+    /**
+     * Call @p f(dofs, first, last) for every cell of this rank that holds
+     * points, with the cell's DoF indices and the range of its points in
+     * points_by_cell.
      */
     template <typename CellFunction>
     void
-    for_each_particle_cell(const CellFunction &f) const;
+    for_each_point_cell(const CellFunction &f) const;
 
-    const Triangulation<3>       &triangulation;
-    const DoFHandler<3>          &dof_handler;
-    const std::optional<double>   period;
-    const GridTools::Cache<3>     cache;
-    Particles::ParticleHandler<3> particles;
-    /// Per point, the fluid cell it was last found in: where the next search
-    /// starts.
-    std::vector<Triangulation<3>::active_cell_iterator> cell_hints;
-    unsigned int                                        n_membrane_points = 0;
+    const Triangulation<3>     &triangulation;
+    const Mapping<3>           &mapping;
+    const DoFHandler<3>        &dof_handler;
+    const std::optional<double> period;
+    const GridTools::Cache<3>   cache;
+    unsigned int                n_membrane_points = 0;
+    /// Per point: the locally owned cell that holds it, or end().
+    std::vector<CellIterator> owner_cell;
+    /// Per point: its reference position in owner_cell.
+    std::vector<Point<3>> reference_points;
+    /// The points of this rank grouped by cell: the cells, the start of
+    /// each cell's points in points_by_cell (one more entry at the end).
+    std::vector<CellIterator> point_cells;
+    std::vector<unsigned int> cell_start;
+    std::vector<unsigned int> points_by_cell;
     /// (local DoF k, velocity component c) of every velocity shape function.
     std::vector<std::pair<unsigned int, unsigned int>> velocity_shape_functions;
     /**
-     * The velocity shape functions' values φ_k(x_I) at every particle of
-     * this rank, in the order for_each_particle_cell() visits them: taken
-     * in place(), used by spread() and interpolate().
+     * The velocity shape functions' values φ_k(x_I) at every point of
+     * this rank, in the order of points_by_cell: taken in place(), used by
+     * spread() and interpolate().
      */
     std::vector<double> shape_values;
   };

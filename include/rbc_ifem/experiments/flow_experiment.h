@@ -4,7 +4,7 @@
 #include <rbc_ifem/experiments/experiment.h>
 #include <rbc_ifem/fluid/fluid_problem.h>
 
-#include <deal.II/distributed/shared_tria.h>
+#include <deal.II/distributed/fully_distributed_tria.h>
 
 namespace rbc_ifem
 {
@@ -33,8 +33,8 @@ namespace rbc_ifem
     void
     execute() override;
 
-    parallel::shared::Triangulation<3> triangulation;
-    FluidProblem                       fluid;
+    parallel::fullydistributed::Triangulation<3> triangulation;
+    FluidProblem                                 fluid;
   };
 } // namespace rbc_ifem
 

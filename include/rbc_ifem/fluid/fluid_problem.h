@@ -12,6 +12,7 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping_q.h>
+#include <deal.II/fe/mapping_q_cache.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/affine_constraints.h>
@@ -134,8 +135,8 @@ namespace rbc_ifem
   struct FluidState
   {
     std::vector<double> solution;
-    /// The solution one step earlier, for the extrapolated first guess of
-    /// a run with a velocity load (empty otherwise).
+    /// The solution one step earlier, for the extrapolated first guess
+    /// (empty before the first step).
     std::vector<double> earlier_solution;
     double              frame_velocity = 0.;
     double              residual_scale = 0.;
@@ -197,9 +198,8 @@ namespace rbc_ifem
   {
   public:
     /**
-     * The flow on @p triangulation (serial or parallel::shared; it must
-     * outlive the problem). Its multigrid levels are made from it by
-     * global coarsening.
+     * The flow on @p triangulation (serial, parallel::shared or fully
+     * distributed; it must outlive the problem).
      */
     FluidProblem(const Triangulation<3> &triangulation,
                  const FluidParameters  &parameters,
@@ -209,10 +209,15 @@ namespace rbc_ifem
 
     ~FluidProblem();
 
-    /// Distribute DoFs, build constraints, the operators and the
-    /// multigrid hierarchy.
+    /**
+     * Distribute DoFs, build constraints, the operators and the multigrid
+     * hierarchy on @p coarser_meshes, the global coarsening of the mesh
+     * (create_distributed_mesh_hierarchy()); without them, for a serial or
+     * shared mesh, global_coarsening_sequence() makes them.
+     */
     void
-    setup();
+    setup(const std::vector<std::shared_ptr<const Triangulation<3>>>
+            &coarser_meshes = {});
 
     /**
      * Change the time step Δt [s]. The velocity operator and its multigrid
@@ -270,8 +275,7 @@ namespace rbc_ifem
     /**
      * Use @p load in the residual and the operator of every solve from the
      * next step on. L is never assembled: FGMRES applies J + L with the
-     * preconditioner of J, and the first guess of a step becomes the
-     * extrapolation 2 vⁿ - vⁿ⁻¹ (which halves the iterations).
+     * preconditioner of J.
      */
     void
     set_velocity_load(const VelocityLoad &load);
@@ -317,19 +321,32 @@ namespace rbc_ifem
     void
     setup_dofs();
     void
-    setup_solver();
+    setup_solver(
+      const std::vector<std::shared_ptr<const Triangulation<3>>> &levels);
     /**
      * Hanging nodes, periodicity, and on the Dirichlet boundaries the
      * drive's velocity in the frame U_frame scaled by @p scale, of the
-     * velocity on @p dof_handler (a level's or the fine one).
+     * velocity on @p dof_handler (a level's or the fine one) with
+     * @p dof_mapping.
      */
     void
-    make_velocity_constraints(const DoFHandler<3>       &dof_handler,
+    make_velocity_constraints(const Mapping<3>          &dof_mapping,
+                              const DoFHandler<3>       &dof_handler,
                               AffineConstraints<double> &constraints,
                               const double               scale) const;
     /// Hanging nodes and periodicity of the pressure.
     void
     make_pressure_constraints();
+    /// Hanging nodes, periodicity and this step's boundary values on
+    /// @p state (owned), then its ghosts.
+    void
+    apply_step_constraints(FluidVector &state);
+    /**
+     * Choose the first guess of a step (current) and assemble its residual;
+     * returns its norm. Keeps vⁿ as earlier.
+     */
+    double
+    start_step(const bool with_convection);
     double
     assemble_residual(const bool with_convection);
     /// Every entry of @p v (owned) in DoF order, velocity then pressure,
@@ -355,11 +372,15 @@ namespace rbc_ifem
     TimerOutput          &timer;
 
     const Triangulation<3> &triangulation;
-    const MappingQ<3>       mapping;
-    const FESystem<3>       velocity_fe;
-    const FE_Q<3>           pressure_fe;
-    DoFHandler<3>           velocity_dofs;
-    DoFHandler<3>           pressure_dofs;
+    /// The quadratic mapping of the fine mesh, its support points computed
+    /// once (every FEValues, point location and output reuses them);
+    /// the multigrid's coarser meshes use level_mapping.
+    MappingQCache<3>  mapping;
+    const MappingQ<3> level_mapping;
+    const FESystem<3> velocity_fe;
+    const FE_Q<3>     pressure_fe;
+    DoFHandler<3>     velocity_dofs;
+    DoFHandler<3>     pressure_dofs;
 
     AffineConstraints<double> velocity_constraints; ///< homogeneous
     AffineConstraints<double> pressure_constraints;
@@ -380,10 +401,11 @@ namespace rbc_ifem
     FluidVector current; ///< (v, p), ghosted
     /// vⁿ, ghosted: the velocity of the last step.
     VelocityVector previous_velocity;
-    /// (vⁿ⁻¹, pⁿ⁻¹) in the current frame, kept with a velocity load (size
-    /// 0 until its first step): the first guess of a step is then
-    /// 2 vⁿ - vⁿ⁻¹, which halves the semi-implicit coupling's iterations.
-    FluidVector    earlier;
+    /// (vⁿ⁻¹, pⁿ⁻¹) in the current frame (size 0 until the first step),
+    /// for the extrapolated first guess 2 vⁿ - vⁿ⁻¹ (start_step()).
+    FluidVector earlier;
+    /// That guess and its residual, the alternative to vⁿ's.
+    FluidVector    extrapolated, extrapolated_residual;
     FluidVector    residual;
     FluidVector    update;
     VelocityVector body_force;

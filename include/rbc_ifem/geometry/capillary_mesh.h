@@ -93,6 +93,15 @@ namespace rbc_ifem
     const TriangulationDescription::Description<3, 3> &description);
 
   /**
+   * Match the end faces of a periodic segment, x = 0 and x = L (boundary
+   * ids 1 and 2 in both the fluid's and the diffusion's numbering), as
+   * neighbours of @p mesh: so that a distributed mesh's ghost layer reaches
+   * across the ends, and a serial one's description for it does.
+   */
+  void
+  add_end_periodicity(Triangulation<3> &mesh);
+
+  /**
    * @p p moved along x by a multiple of @p period into [0, period): where a
    * point of a cell that crossed the end of a periodic segment lies in the
    * segment's meshes. Without a period, @p p itself.

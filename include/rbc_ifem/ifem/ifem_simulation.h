@@ -14,7 +14,7 @@
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
-#include <deal.II/distributed/shared_tria.h>
+#include <deal.II/distributed/fully_distributed_tria.h>
 
 #include <memory>
 #include <string>
@@ -159,16 +159,17 @@ namespace rbc_ifem
     [[noreturn]] void
     stop(const std::string &why, const std::vector<Vector<double>> &last_good);
 
-    const Parameters                   parameters;
-    const std::string                  parameter_file_text;
-    const MPI_Comm                     communicator;
-    const FlowDomain                   domain;
-    ConditionalOStream                 pcout;
-    TimerOutput                       &timer;
-    parallel::shared::Triangulation<3> triangulation;
-    FluidProblem                       fluid;
-    CellPopulation                     cells;
-    std::unique_ptr<ImmersedCoupling>  coupling;
+    const Parameters   parameters;
+    const std::string  parameter_file_text;
+    const MPI_Comm     communicator;
+    const FlowDomain   domain;
+    ConditionalOStream pcout;
+    TimerOutput       &timer;
+    /// The fluid mesh: every rank holds its part (rank 0 builds it).
+    parallel::fullydistributed::Triangulation<3> triangulation;
+    FluidProblem                                 fluid;
+    CellPopulation                               cells;
+    std::unique_ptr<ImmersedCoupling>            coupling;
     /// The semi-implicit coupling's load; null for the explicit coupling.
     std::unique_ptr<SemiImplicitLoad> semi_implicit;
     std::vector<RunObserver *>        observers;

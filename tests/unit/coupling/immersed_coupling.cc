@@ -9,17 +9,25 @@
 //   for a random v that satisfies the fluid's constraints;
 // - a force-free membrane in steady Poiseuille flow, moved by the
 //   interpolated velocity, follows the tracers of the exact flow;
-// - a point pushed out of the capillary is reported, not dropped.
+// - a point pushed out of the capillary is reported, not dropped;
+// - on a fully distributed mesh, a membrane carried along the whole
+//   capillary crosses the partitions: at every step each point is on
+//   exactly one rank, and the spread force is the total force.
 
 #include <rbc_ifem/coupling/immersed_coupling.h>
 #include <rbc_ifem/fluid/fluid_problem.h>
 #include <rbc_ifem/geometry/capillary_mesh.h>
 #include <rbc_ifem/geometry/cell_surface.h>
+#include <rbc_ifem/geometry/mesh_hierarchy.h>
 #include <rbc_ifem/membrane/membrane.h>
 
 #include "check.h"
 
 #include <deal.II/base/function.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping_q.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <memory>
@@ -126,8 +134,7 @@ namespace
     const Point<3>   center(10., 0.4, -0.3);
     const auto       x = membrane_nodes(center);
     coupling.place(x);
-    const unsigned int own =
-      coupling.get_particle_handler().n_locally_owned_particles();
+    const unsigned int own = coupling.n_locally_owned_points();
     std::cout << coupling.n_points() << " membrane points on "
               << Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) << " rank(s), "
               << Utilities::MPI::min(own, MPI_COMM_WORLD) << " to "
@@ -271,6 +278,89 @@ namespace
     check.holds("a point pushed through the wall is reported by its index",
                 message.find("membrane point 7 ") != std::string::npos);
   }
+
+  /**
+   * A membrane carried from x = 3 µm to x = 17 µm in steps of 0.25 µm on a
+   * fully distributed capillary mesh: at every step each point must be on
+   * exactly one rank, and spreading a unit axial force on every point must
+   * give the total force; on several ranks points must change rank.
+   */
+  void
+  check_partition_crossing(Checker &check)
+  {
+    parallel::fullydistributed::Triangulation<3> mesh(MPI_COMM_WORLD);
+    create_distributed_mesh_hierarchy(
+      mesh,
+      [](Triangulation<3> &serial) { create_fluid_mesh(serial, geometry, 1); },
+      false);
+    const MappingQ<3> mapping(2);
+    const FESystem<3> fe(FE_Q<3>(2), 3);
+    DoFHandler<3>     dofs(mesh);
+    dofs.distribute_dofs(fe);
+    const IndexSet relevant = DoFTools::extract_locally_relevant_dofs(dofs);
+    VelocityVector unit(dofs.locally_owned_dofs(), relevant, MPI_COMM_WORLD);
+    VectorTools::interpolate(mapping,
+                             dofs,
+                             Functions::ConstantFunction<3>(
+                               std::vector<double>{1., 0., 0.}),
+                             unit);
+    AffineConstraints<double> none;
+    none.close();
+    ImmersedCoupling coupling(mesh, mapping, dofs);
+
+    const unsigned int rank = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+    auto               x    = membrane_nodes(Point<3>(3., 0.3, 0.));
+    const std::vector<Tensor<1, 3>> F(x.size(), Tensor<1, 3>({1., 0., 0.}));
+    std::vector<unsigned int>       last_holder;
+    unsigned int                    worst_miscount = 0, changes = 0;
+    double                          worst_force = 0.;
+    for (unsigned int step = 0; step <= 56; ++step)
+      {
+        coupling.place(x);
+        // Each point counted by the ranks that hold it: once, if right.
+        std::vector<unsigned int> holders(x.size(), 0), holder(x.size(), 0);
+        for (const unsigned int i : coupling.locally_owned_point_indices())
+          {
+            holders[i] = 1;
+            holder[i]  = rank;
+          }
+        Utilities::MPI::sum(holders, MPI_COMM_WORLD, holders);
+        Utilities::MPI::sum(holder, MPI_COMM_WORLD, holder);
+        for (unsigned int i = 0; i < x.size(); ++i)
+          {
+            worst_miscount =
+              std::max(worst_miscount,
+                       holders[i] > 1 ? holders[i] - 1 : 1 - holders[i]);
+            if (!last_holder.empty())
+              changes += holder[i] != last_holder[i];
+          }
+        last_holder = holder;
+
+        VelocityVector load(dofs.locally_owned_dofs(),
+                            relevant,
+                            MPI_COMM_WORLD);
+        coupling.spread(F, none, load);
+        worst_force =
+          std::max(worst_force,
+                   std::abs(load * unit - double(x.size())) / double(x.size()));
+        for (auto &p : x)
+          p[0] += 0.25;
+      }
+    std::cout << "  " << x.size()
+              << " points carried 14 µm in 56 steps: " << changes
+              << " changes of rank\n";
+    check.near("|ranks holding a point - 1|, worst point and step",
+               worst_miscount,
+               0.,
+               0.);
+    check.at_most("|⟨spread F, e_x⟩ - Σ F_x| / Σ F_x, worst step",
+                  worst_force,
+                  1e-12);
+    if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+      check.at_least("points that changed rank, summed over the steps",
+                     changes,
+                     x.size());
+  }
 } // namespace
 
 int
@@ -283,5 +373,6 @@ main(int argc, char *argv[])
   check_conservation_and_adjointness(check);
   check_tracers(check);
   check_lost_point(check);
+  check_partition_crossing(check);
   return check.exit_code();
 }

@@ -99,11 +99,11 @@ namespace rbc_ifem
     for (unsigned int level = 0; level <= fine; ++level)
       {
         operators[level]->set_coefficients(mass_factor, viscosity);
-        // Chebyshev of degree 4 on the upper part [λ_max/20, 1.2 λ_max] of
+        // Chebyshev of degree 2 on the upper part [λ_max/20, 1.2 λ_max] of
         // the spectrum of D⁻¹A: the part the coarser levels cannot see.
         smoother_data[level].preconditioner =
           operators[level]->inverse_diagonal();
-        smoother_data[level].degree              = 4;
+        smoother_data[level].degree              = 2;
         smoother_data[level].smoothing_range     = 20.;
         smoother_data[level].eig_cg_n_iterations = 20;
       }

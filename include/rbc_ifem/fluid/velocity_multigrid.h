@@ -30,7 +30,7 @@ namespace rbc_ifem
    * where it can be, down to the capillary's coarse mesh; so levels have
    * hanging nodes where the fine mesh has them, and a locally refined band
    * costs no special treatment. On each level Q2 with the same boundary
-   * conditions; Chebyshev smoothing of degree 4 around the inverse
+   * conditions; Chebyshev smoothing of degree 2 around the inverse
    * diagonal (eigenvalues estimated once per coefficient change), a direct
    * solve (Trilinos Amesos) on the coarsest mesh.
    */

@@ -26,6 +26,13 @@ namespace rbc_ifem
     add_force(std::make_unique<MembraneElasticity>(cell_membranes));
   }
 
+  void
+  CellPopulation::share_work(const MPI_Comm comm)
+  {
+    for (const std::unique_ptr<Membrane> &membrane : cell_membranes)
+      membrane->share_work(comm);
+  }
+
   unsigned int
   CellPopulation::size() const
   {

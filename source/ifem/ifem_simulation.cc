@@ -229,6 +229,12 @@ namespace rbc_ifem
         pcout << "  squeezed into the lumen in " << stages << " stages"
               << std::endl;
       }
+    // The membranes are replicated; from here on their forces and stiffness
+    // are shared out over the ranks, which compute them together. The
+    // squeeze above runs on every rank alone, so that its L-BFGS path, and
+    // the squeezed shape within its tolerance, are the same for any number
+    // of ranks.
+    cells.share_work(communicator);
     std::vector<std::shared_ptr<const Triangulation<3>>> coarser_meshes;
     {
       TimerOutput::Scope          scope(timer, "fluid mesh");

@@ -81,6 +81,25 @@ namespace rbc_ifem
 
   namespace
   {
+    /// The number of ranks of @p comm; 1 in a program that never started
+    /// MPI (a serial test).
+    unsigned int
+    n_ranks(const MPI_Comm comm)
+    {
+      return Utilities::MPI::job_supports_mpi() ?
+               Utilities::MPI::n_mpi_processes(comm) :
+               1;
+    }
+
+    /// Replace @p values on every rank of @p comm by their sum over the ranks.
+    void
+    add_up_over_ranks(const ArrayView<double> &values, const MPI_Comm comm)
+    {
+      Utilities::MPI::sum(ArrayView<const double>(values.data(), values.size()),
+                          comm,
+                          values);
+    }
+
     /// The surface at one quadrature point, from its tangents.
     template <typename Number>
     struct SurfacePoint
@@ -141,30 +160,6 @@ namespace rbc_ifem
       return kappa / 2. * m * (u * u);
     }
 
-    /**
-     * Call @p f(number, law) with the membrane's elastic law and a forward-
-     * mode Sacado number for a cell's DoFs: of a length fixed at compile
-     * time for degrees 1 and 2 (no heap allocation per operation, several
-     * times faster than DFad), DFad beyond.
-     */
-    template <typename Function>
-    void
-    with_cell_number(const unsigned int degree,
-                     const ElasticLaw  &law,
-                     const Function    &f)
-    {
-      std::visit(
-        [&](const auto &l) {
-          if (degree == 1)
-            f(Sacado::Fad::SFad<double, 3 * 4>(), l);
-          else if (degree == 2)
-            f(Sacado::Fad::SFad<double, 3 * 9>(), l);
-          else
-            f(Sacado::Fad::DFad<double>(), l);
-        },
-        law);
-    }
-
     /// The Hessian of nodal_bending_energy() in (y, m, w), 7 × 7.
     FullMatrix<double>
     nodal_bending_hessian(const Tensor<1, 3> &y,
@@ -206,7 +201,16 @@ namespace rbc_ifem
   MembraneStiffness::vmult_add(Vector<double>       &dst,
                                const Vector<double> &src) const
   {
-    local.vmult_add(dst, src);
+    if (n_ranks(communicator) == 1)
+      local.vmult_add(dst, src);
+    else
+      {
+        // Each rank holds its share of the sparse part: sum the products.
+        Vector<double> product(dst.size());
+        local.vmult(product, src);
+        add_up_over_ranks(make_array_view(product), communicator);
+        dst += product;
+      }
     for (const auto &[c, gradient] : rank_one)
       dst.add(c * (gradient * src), gradient);
   }
@@ -233,6 +237,15 @@ namespace rbc_ifem
         {
           shape_values(a, q)    = scalar_fe.shape_value(a, quadrature.point(q));
           shape_gradients(a, q) = scalar_fe.shape_grad(a, quadrature.point(q));
+        }
+    point_maps.assign(n_q, FullMatrix<double>(9, fe.n_dofs_per_cell()));
+    for (unsigned int q = 0; q < n_q; ++q)
+      for (unsigned int k = 0; k < fe.n_dofs_per_cell(); ++k)
+        {
+          const auto [e, a]       = fe.system_to_component_index(k);
+          point_maps[q](e, k)     = shape_values(a, q);
+          point_maps[q](3 + e, k) = shape_gradients(a, q)[0];
+          point_maps[q](6 + e, k) = shape_gradients(a, q)[1];
         }
 
     // Nodes: numbered by the DoF of their x component.
@@ -404,7 +417,9 @@ namespace rbc_ifem
   }
 
   Membrane::Sums
-  Membrane::sum_cell_terms(const Vector<double> &x) const
+  Membrane::sum_cell_terms(
+    const Vector<double>                       &x,
+    const std::pair<unsigned int, unsigned int> cells) const
   {
     Sums sums;
     sums.laplacian.resize(n_nodes);
@@ -413,11 +428,67 @@ namespace rbc_ifem
     // The law is chosen once per call, outside the loop over the cells.
     std::visit(
       [&](const auto &law) {
-        for (unsigned int c = 0; c < cell_dofs.size(); ++c)
+        for (unsigned int c = cells.first; c < cells.second; ++c)
           add_cell_terms(c, cell_terms(law, c, local_positions(c, x)), sums);
       },
       elastic_law);
     return sums;
+  }
+
+  Membrane::Sums
+  Membrane::sum_cell_terms(const Vector<double> &x) const
+  {
+    return sum_cell_terms(x, {0, cell_dofs.size()});
+  }
+
+  Membrane::Sums
+  Membrane::sum_shared_cell_terms(const Vector<double> &x) const
+  {
+    Sums sums = sum_cell_terms(x, share(cell_dofs.size()));
+    if (n_ranks(communicator) == 1)
+      return sums;
+    // One reduction for all sums, packed in one array.
+    std::vector<double> packed{sums.in_plane, sums.area, sums.volume};
+    packed.reserve(3 + 7 * n_nodes);
+    for (unsigned int i = 0; i < n_nodes; ++i)
+      {
+        for (unsigned int e = 0; e < 3; ++e)
+          packed.insert(packed.end(),
+                        {sums.laplacian[i][e], sums.normal[i][e]});
+        packed.push_back(sums.mass[i]);
+      }
+    add_up_over_ranks(make_array_view(packed), communicator);
+    auto value    = packed.begin();
+    sums.in_plane = *value++;
+    sums.area     = *value++;
+    sums.volume   = *value++;
+    for (unsigned int i = 0; i < n_nodes; ++i)
+      {
+        for (unsigned int e = 0; e < 3; ++e)
+          {
+            sums.laplacian[i][e] = *value++;
+            sums.normal[i][e]    = *value++;
+          }
+        sums.mass[i] = *value++;
+      }
+    return sums;
+  }
+
+  std::pair<unsigned int, unsigned int>
+  Membrane::share(const unsigned int n) const
+  {
+    const unsigned int size = n_ranks(communicator),
+                       rank = size == 1 ?
+                                0 :
+                                Utilities::MPI::this_mpi_process(communicator);
+    return {static_cast<unsigned int>(std::uint64_t(n) * rank / size),
+            static_cast<unsigned int>(std::uint64_t(n) * (rank + 1) / size)};
+  }
+
+  void
+  Membrane::share_work(const MPI_Comm comm)
+  {
+    communicator = comm;
   }
 
   void
@@ -491,29 +562,45 @@ namespace rbc_ifem
                               Vector<double>       &forces) const
   {
     MembraneEnergy    energy;
-    const Multipliers d = energy_derivatives(sum_cell_terms(x), energy);
+    const Multipliers d = energy_derivatives(sum_shared_cell_terms(x), energy);
     if (forces.size() == 0)
       return energy;
 
-    // F = -dE/dx: per cell, the derivative of its own energy plus the
-    // nodal and global sums it feeds, weighted by dE/d(sum), in forward
-    // mode (with_cell_number()).
-    forces                             = 0.;
-    const auto subtract_cell_gradients = [&](auto ad_number, const auto &law) {
-      using ADNumber = decltype(ad_number);
-      for (unsigned int c = 0; c < cell_dofs.size(); ++c)
+    // F = -dE/dx: per cell, the derivative of its potential φ_c
+    // (cell_potential()), whose gradient is E's. φ_c's integrand depends on
+    // the DoFs only through the point's position and tangents z = L_q x, so
+    // ∂φ_c/∂x = Σ_q L_qᵀ ∂φ_q/∂z, with the 9 derivatives by forward mode:
+    // far cheaper than forward mode in the cell's DoFs.
+    forces                              = 0.;
+    const auto subtract_point_gradients = [&](const auto &law) {
+      using ADNumber = Sacado::Fad::SFad<double, 9>;
+      Vector<double> values(fe.n_dofs_per_cell()), z(9), dphi_dz(9),
+        gradient(fe.n_dofs_per_cell());
+      const auto [begin, end] = share(cell_dofs.size());
+      for (unsigned int c = begin; c < end; ++c)
         {
-          const std::vector<double> values = local_positions(c, x);
-          std::vector<ADNumber>     local(values.size());
-          for (unsigned int k = 0; k < values.size(); ++k)
-            local[k] = ADNumber(values.size(), k, values[k]);
-          const CellTerms<ADNumber> terms = cell_terms(law, c, local);
-          const ADNumber            phi   = cell_potential(c, terms, d);
-          for (unsigned int k = 0; k < values.size(); ++k)
-            forces[cell_dofs[c][k]] -= phi.dx(k);
+          x.extract_subvector_to(cell_dofs[c].begin(),
+                                 cell_dofs[c].end(),
+                                 values.begin());
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              point_maps[q].vmult(z, values);
+              std::array<ADNumber, 9> z_ad;
+              for (unsigned int j = 0; j < 9; ++j)
+                z_ad[j] = ADNumber(9, j, z[j]);
+              const ADNumber phi =
+                point_potential(law, c, q, z_ad, point_weights(c, q, d));
+              for (unsigned int j = 0; j < 9; ++j)
+                dphi_dz[j] = phi.dx(j);
+              point_maps[q].Tvmult(gradient, dphi_dz);
+              for (unsigned int k = 0; k < gradient.size(); ++k)
+                forces[cell_dofs[c][k]] -= gradient[k];
+            }
         }
     };
-    with_cell_number(parameters.degree, elastic_law, subtract_cell_gradients);
+    std::visit(subtract_point_gradients, elastic_law);
+    if (n_ranks(communicator) > 1)
+      add_up_over_ranks(make_array_view(forces), communicator);
     return energy;
   }
 
@@ -563,6 +650,62 @@ namespace rbc_ifem
     return phi;
   }
 
+  template <typename Number>
+  auto
+  Membrane::point_integrands(const unsigned int           c,
+                             const unsigned int           q,
+                             const std::array<Number, 9> &z) const
+    -> std::array<Number, n_point_integrands>
+  {
+    Tensor<1, 3, Number> position, tangent[2];
+    for (unsigned int e = 0; e < 3; ++e)
+      {
+        position[e]   = z[e];
+        tangent[0][e] = z[3 + e];
+        tangent[1][e] = z[6 + e];
+      }
+    const SurfacePoint<Number> point =
+      surface_point(tangent,
+                    reference_metric_inverse[c][q],
+                    reference_jacobian[c][q],
+                    quadrature.weight(q));
+    std::array<Number, n_point_integrands> t;
+    t[0] = point.dA;
+    t[1] = position * point.normal_dA / 3.;
+    for (unsigned int e = 0; e < 3; ++e)
+      t[2 + e] = point.normal_dA[e];
+    // g^{αβ} t_β dA: ∂_α N_a times it is the integrand of y_a.
+    for (unsigned int alpha = 0; alpha < 2; ++alpha)
+      for (unsigned int e = 0; e < 3; ++e)
+        {
+          t[5 + 3 * alpha + e] = 0.;
+          for (unsigned int beta = 0; beta < 2; ++beta)
+            t[5 + 3 * alpha + e] +=
+              point.g_inverse[alpha][beta] * point.dA * tangent[beta][e];
+        }
+    return t;
+  }
+
+  Membrane::PointWeights
+  Membrane::point_weights(const unsigned int c,
+                          const unsigned int q,
+                          const Multipliers &d) const
+  {
+    PointWeights weights;
+    weights.area   = d.area;
+    weights.volume = d.volume;
+    for (unsigned int a = 0; a < cell_nodes[c].size(); ++a)
+      {
+        const unsigned int i = cell_nodes[c][a];
+        weights.mass += d.mass[i] * shape_values(a, q);
+        weights.normal += shape_values(a, q) * d.normal[i];
+        for (unsigned int alpha = 0; alpha < 2; ++alpha)
+          weights.laplacian[alpha] +=
+            shape_gradients(a, q)[alpha] * d.laplacian[i];
+      }
+    return weights;
+  }
+
   std::vector<types::global_dof_index>
   Membrane::patch_dofs(const unsigned int i) const
   {
@@ -577,86 +720,106 @@ namespace rbc_ifem
   void
   Membrane::stiffness(const Vector<double> &x, MembraneStiffness &K) const
   {
-    const Sums        sums = sum_cell_terms(x);
+    const Sums        sums = sum_shared_cell_terms(x);
     MembraneEnergy    energy;
     const Multipliers d = energy_derivatives(sums, energy);
     K.local.reinit(stiffness_sparsity);
     K.rank_one.clear();
+    K.communicator = communicator;
 
-    // Per cell: the first derivatives of its terms (one forward pass), of A
-    // and V for the penalties' rank-one parts and of each node's sums (y,
-    // m, w: 7 rows per local node) for the bending chain below; and the
-    // Hessian of its potential φ_c (cell_potential()). φ_c's integrand
-    // depends on the DoFs only through the point's position and tangents
-    // z = L_q x (9 numbers), so H_c = Σ_q L_qᵀ H_q L_q, with the 9 × 9 H_q
-    // by nested forward mode: far cheaper than nesting over the cell.
-    const unsigned int n_a = scalar_fe.n_dofs_per_cell(),
-                       n   = fe.n_dofs_per_cell();
+    // Every integrand depends on the DoFs only through the point's position
+    // and tangents z = L_q x (9 numbers), so derivatives in the cell's DoFs
+    // are taken in z, by forward mode per point, and chained with L_q: far
+    // cheaper than forward mode over the cell.
+    //
+    // First, per cell, the first derivatives of its terms: of A and V for
+    // the penalties' rank-one parts (this rank's cells, summed over the
+    // ranks) and of each node's sums (y, m, w: 7 rows per local node) for
+    // the bending chain below (the cells around this rank's nodes).
+    const unsigned int n_a            = scalar_fe.n_dofs_per_cell(),
+                       n              = fe.n_dofs_per_cell();
+    const auto [first_cell, end_cell] = share(cell_dofs.size());
+    const auto [first_node, end_node] = share(n_nodes);
+    std::vector<bool> needed(cell_dofs.size(), false);
+    std::fill(needed.begin() + first_cell, needed.begin() + end_cell, true);
+    for (unsigned int i = first_node; i < end_node; ++i)
+      for (const auto &[c, a] : cells_around_node[i])
+        needed[c] = true;
     Vector<double> area_gradient(dof_handler.n_dofs()),
       volume_gradient(dof_handler.n_dofs());
-    std::vector<FullMatrix<double>> sum_derivatives(cell_dofs.size(),
-                                                    FullMatrix<double>(7 * n_a,
-                                                                       n));
-    const auto add_cell_hessians = [&](auto ad_number, const auto &law) {
-      using ADNumber = decltype(ad_number);
-      using First    = Sacado::Fad::SFad<double, 9>;
-      using Second   = Sacado::Fad::SFad<First, 9>;
-      FullMatrix<double> cell_matrix(n, n), L(9, n), H(9, 9), HL(9, n);
+    std::vector<FullMatrix<double>> sum_derivatives(cell_dofs.size());
+    {
+      using First = Sacado::Fad::SFad<double, 9>;
+      FullMatrix<double> D(n_point_integrands, 9), DL(n_point_integrands, n);
+      Vector<double>     values(n), z(9);
       for (unsigned int c = 0; c < cell_dofs.size(); ++c)
         {
-          const std::vector<double> values = local_positions(c, x);
-          std::vector<ADNumber>     local(n);
-          for (unsigned int k = 0; k < n; ++k)
-            local[k] = ADNumber(n, k, values[k]);
-          const CellTerms<ADNumber> terms = cell_terms(law, c, local);
-          FullMatrix<double>       &J     = sum_derivatives[c];
-          for (unsigned int k = 0; k < n; ++k)
+          if (!needed[c])
+            continue;
+          const bool own = c >= first_cell && c < end_cell;
+          x.extract_subvector_to(cell_dofs[c].begin(),
+                                 cell_dofs[c].end(),
+                                 values.begin());
+          FullMatrix<double> &J = sum_derivatives[c];
+          J.reinit(7 * n_a, n);
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
-              area_gradient[cell_dofs[c][k]] += terms.area.dx(k);
-              volume_gradient[cell_dofs[c][k]] += terms.volume.dx(k);
-              for (unsigned int a = 0; a < n_a; ++a)
+              point_maps[q].vmult(z, values);
+              std::array<First, 9> z1;
+              for (unsigned int j = 0; j < 9; ++j)
+                z1[j] = First(9, j, z[j]);
+              const auto t = point_integrands(c, q, z1);
+              for (unsigned int r = 0; r < n_point_integrands; ++r)
+                for (unsigned int j = 0; j < 9; ++j)
+                  D(r, j) = t[r].dx(j);
+              D.mmult(DL, point_maps[q]);
+              for (unsigned int k = 0; k < n; ++k)
                 {
-                  for (unsigned int e = 0; e < 3; ++e)
+                  if (own)
                     {
-                      J(7 * a + e, k)     = terms.laplacian[a][e].dx(k);
-                      J(7 * a + 4 + e, k) = terms.normal[a][e].dx(k);
+                      area_gradient[cell_dofs[c][k]] += DL(0, k);
+                      volume_gradient[cell_dofs[c][k]] += DL(1, k);
                     }
-                  J(7 * a + 3, k) = terms.mass[a].dx(k);
+                  for (unsigned int a = 0; a < n_a; ++a)
+                    {
+                      const double N = shape_values(a, q);
+                      J(7 * a + 3, k) += N * DL(0, k);
+                      for (unsigned int e = 0; e < 3; ++e)
+                        {
+                          J(7 * a + 4 + e, k) += N * DL(2 + e, k);
+                          for (unsigned int alpha = 0; alpha < 2; ++alpha)
+                            J(7 * a + e, k) += shape_gradients(a, q)[alpha] *
+                                               DL(5 + 3 * alpha + e, k);
+                        }
+                    }
                 }
             }
+        }
+    }
 
+    // The Hessian of each of this rank's cells' potentials φ_c
+    // (cell_potential()), H_c = Σ_q L_qᵀ H_q L_q, with the 9 × 9 H_q by
+    // nested forward mode.
+    const auto add_cell_hessians = [&](const auto &law) {
+      using First  = Sacado::Fad::SFad<double, 9>;
+      using Second = Sacado::Fad::SFad<First, 9>;
+      FullMatrix<double> cell_matrix(n, n), H(9, 9), HL(9, n);
+      Vector<double>     values(n), z(9);
+      for (unsigned int c = first_cell; c < end_cell; ++c)
+        {
+          x.extract_subvector_to(cell_dofs[c].begin(),
+                                 cell_dofs[c].end(),
+                                 values.begin());
           cell_matrix = 0.;
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
-              L = 0.;
-              PointWeights weights;
-              weights.area   = d.area;
-              weights.volume = d.volume;
-              for (unsigned int k = 0; k < n; ++k)
-                {
-                  const auto [e, a] = fe.system_to_component_index(k);
-                  L(e, k)           = shape_values(a, q);
-                  L(3 + e, k)       = shape_gradients(a, q)[0];
-                  L(6 + e, k)       = shape_gradients(a, q)[1];
-                }
-              for (unsigned int a = 0; a < n_a; ++a)
-                {
-                  const unsigned int i = cell_nodes[c][a];
-                  weights.mass += d.mass[i] * shape_values(a, q);
-                  weights.normal += shape_values(a, q) * d.normal[i];
-                  for (unsigned int alpha = 0; alpha < 2; ++alpha)
-                    weights.laplacian[alpha] +=
-                      shape_gradients(a, q)[alpha] * d.laplacian[i];
-                }
-              std::array<Second, 9> z;
+              const FullMatrix<double> &L = point_maps[q];
+              L.vmult(z, values);
+              std::array<Second, 9> z2;
               for (unsigned int j = 0; j < 9; ++j)
-                {
-                  double value = 0.;
-                  for (unsigned int k = 0; k < n; ++k)
-                    value += L(j, k) * values[k];
-                  z[j] = Second(9, j, First(9, j, value));
-                }
-              const Second phi = point_potential(law, c, q, z, weights);
+                z2[j] = Second(9, j, First(9, j, z[j]));
+              const Second phi =
+                point_potential(law, c, q, z2, point_weights(c, q, d));
               for (unsigned int j = 0; j < 9; ++j)
                 for (unsigned int l = 0; l < 9; ++l)
                   H(j, l) = phi.dx(j).dx(l);
@@ -666,11 +829,17 @@ namespace rbc_ifem
           K.local.add(cell_dofs[c], cell_matrix);
         }
     };
-    with_cell_number(parameters.degree, elastic_law, add_cell_hessians);
+    std::visit(add_cell_hessians, elastic_law);
+    if (n_ranks(communicator) > 1)
+      {
+        add_up_over_ranks(make_array_view(area_gradient), communicator);
+        add_up_over_ranks(make_array_view(volume_gradient), communicator);
+      }
 
-    // The bending energy's curvature in each node's sums s_i = (y, m, w):
-    // J_iᵀ B_i J_i, with J_i = ∂s_i/∂x over the cells around the node.
-    for (unsigned int i = 0; i < n_nodes; ++i)
+    // The bending energy's curvature in each of this rank's nodes' sums
+    // s_i = (y, m, w): J_iᵀ B_i J_i, with J_i = ∂s_i/∂x over the cells
+    // around the node.
+    for (unsigned int i = first_node; i < end_node; ++i)
       {
         const std::vector<types::global_dof_index> patch = patch_dofs(i);
         FullMatrix<double> J(7, patch.size()), BJ(7, patch.size()),

@@ -64,6 +64,14 @@ namespace rbc_ifem
     CellPopulation &
     operator=(const CellPopulation &) = delete;
 
+    /**
+     * Share the membranes' force and stiffness loops out over the ranks of
+     * @p comm (Membrane::share_work()): every rank must then compute the
+     * forces and the stiffness together.
+     */
+    void
+    share_work(const MPI_Comm comm);
+
     unsigned int
     size() const;
     unsigned int

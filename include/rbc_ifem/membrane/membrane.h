@@ -5,6 +5,7 @@
 #include <rbc_ifem/membrane/elastic_law.h>
 #include <rbc_ifem/membrane/parameters.h>
 
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/table.h>
 #include <deal.II/base/tensor.h>
@@ -12,6 +13,7 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/grid/tria.h>
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
@@ -52,10 +54,14 @@ namespace rbc_ifem
    */
   struct MembraneStiffness
   {
+    /// The sparse part: this rank's share of it when the membrane shares
+    /// its work (Membrane::share_work()).
     SparseMatrix<double>                           local;
     std::vector<std::pair<double, Vector<double>>> rank_one;
+    /// The ranks that hold a share of the sparse part.
+    MPI_Comm communicator = MPI_COMM_SELF;
 
-    /// @p dst += K @p src
+    /// @p dst += K @p src; collective over the communicator.
     void
     vmult_add(Vector<double> &dst, const Vector<double> &src) const;
   };
@@ -81,8 +87,11 @@ namespace rbc_ifem
    * energy_and_forces() returns F = -∂E/∂x, exact for this discrete energy:
    * every term is a function of cell integrals and of nodal and global sums
    * of them, so the chain rule reduces the gradient to one derivative per
-   * cell, taken with Sacado's forward-mode automatic differentiation.
-   * stiffness() returns ∂²E/∂x², exact too: nested forward mode per cell,
+   * cell. Each integrand depends on the cell's DoFs only through the
+   * position and tangents at its quadrature point (9 numbers), so that
+   * derivative is taken there, with Sacado's forward-mode automatic
+   * differentiation in those 9, and chained to the cell's DoFs.
+   * stiffness() returns ∂²E/∂x², exact too: nested forward mode per point,
    * and the chain rule through the nodal and global sums.
    */
   class Membrane
@@ -93,6 +102,18 @@ namespace rbc_ifem
 
     const DoFHandler<2, 3> &
     get_dof_handler() const;
+
+    /**
+     * Share the cell loops of energy_and_forces() and stiffness() out over
+     * the ranks of @p comm: each rank takes a contiguous block of the cells
+     * (and of the nodes), and the sums, the forces and the products with
+     * the stiffness are added up over the ranks, so that every rank gets
+     * the whole result. Every rank of @p comm must then call these
+     * functions together, with the same positions. Without it (or with
+     * MPI_COMM_SELF) a membrane works alone.
+     */
+    void
+    share_work(const MPI_Comm comm);
 
     /// The reference positions X: every DoF's coordinate on the reference
     /// surface.
@@ -205,6 +226,29 @@ namespace rbc_ifem
 
     struct PointWeights;
 
+    /// How many integrands point_integrands() returns.
+    static constexpr unsigned int n_point_integrands = 11;
+
+    /**
+     * The integrands of the cell terms at quadrature point @p q of cell
+     * @p c, times its weight, from the point's position and tangents @p z:
+     * dA, x·n dA/3, n dA (3) and g^{αβ} ∂x/∂ξβ dA for α = 1, 2 (3 each),
+     * whose products with N_a and ∂N_a/∂ξα sum to the cell's m_a, V, w_a
+     * and y_a (the area is the first).
+     */
+    template <typename Number>
+    std::array<Number, n_point_integrands>
+    point_integrands(const unsigned int           c,
+                     const unsigned int           q,
+                     const std::array<Number, 9> &z) const;
+
+    /// The sums' derivatives @p d gathered at quadrature point @p q of
+    /// cell @p c.
+    PointWeights
+    point_weights(const unsigned int c,
+                  const unsigned int q,
+                  const Multipliers &d) const;
+
     /**
      * The integrand of cell_potential() at quadrature point @p q of
      * @p cell, times its weight, from the point's position and tangents
@@ -239,11 +283,25 @@ namespace rbc_ifem
     Sums
     sum_cell_terms(const Vector<double> &x) const;
 
+    /// The same over the cells [@p cells.first, @p cells.second) only.
+    Sums
+    sum_cell_terms(const Vector<double>                       &x,
+                   const std::pair<unsigned int, unsigned int> cells) const;
+
+    /// sum_cell_terms() shared out over the ranks of share_work().
+    Sums
+    sum_shared_cell_terms(const Vector<double> &x) const;
+
+    /// This rank's block [first, second) of @p n items shared out.
+    std::pair<unsigned int, unsigned int>
+    share(const unsigned int n) const;
+
     std::vector<double>
     local_positions(const unsigned int cell, const Vector<double> &x) const;
 
     const MembraneParameters parameters;
     const ElasticLaw         elastic_law; ///< chosen from parameters.law
+    MPI_Comm                 communicator = MPI_COMM_SELF; ///< share_work()
     FE_Q<2, 3>               scalar_fe;
     FESystem<2, 3>           fe;
     DoFHandler<2, 3>         dof_handler;
@@ -270,6 +328,10 @@ namespace rbc_ifem
     /// N_a and ∂N_a/∂ξ at the quadrature points of the unit cell.
     Table<2, double>       shape_values;
     Table<2, Tensor<1, 2>> shape_gradients;
+    /// Per quadrature point q, the 9 × (cell DoFs) matrix L_q taking a
+    /// cell's positions to the point's position and tangents
+    /// z = (x, ∂x/∂ξ1, ∂x/∂ξ2): what the energy density depends on.
+    std::vector<FullMatrix<double>> point_maps;
 
     /// Every cell's area on the reference surface [µm²].
     std::vector<double> reference_cell_areas;

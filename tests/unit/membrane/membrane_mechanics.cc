@@ -22,6 +22,7 @@
 #include <rbc_ifem/membrane/membrane_equilibrium.h>
 
 #include "check.h"
+#include "membrane_fixtures.h"
 
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/manifold_lib.h>
@@ -31,6 +32,8 @@
 #include <random>
 
 using namespace rbc_ifem;
+using test::create_cell;
+using test::random_vector;
 
 namespace
 {
@@ -48,28 +51,6 @@ namespace
     p.area_penalty    = area ? 500. : 0.;
     p.volume_penalty  = volume ? 500. : 0.;
     return p;
-  }
-
-  Vector<double>
-  random_vector(const unsigned int n,
-                const double       amplitude,
-                std::mt19937      &random)
-  {
-    std::uniform_real_distribution<double> uniform(-amplitude, amplitude);
-    Vector<double>                         v(n);
-    for (auto &entry : v)
-      entry = uniform(random);
-    return v;
-  }
-
-  /// The Evans-Fung cell at the origin, axis z.
-  void
-  create_cell(Triangulation<2, 3> &surface, const unsigned int refinements)
-  {
-    create_cell_surface(surface,
-                        EvansFungShape(7.5),
-                        CellPlacement{Point<3>(), Tensor<1, 3>({0., 0., 1.})},
-                        refinements);
   }
 
   /**

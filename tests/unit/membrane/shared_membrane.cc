@@ -4,29 +4,17 @@
 // elastic laws and both element degrees, all energy terms on, at a randomly
 // perturbed Evans-Fung cell. Runs on 2 and 3 ranks (an uneven share).
 
-#include <rbc_ifem/geometry/cell_surface.h>
 #include <rbc_ifem/membrane/membrane.h>
 
 #include "check.h"
-
-#include <random>
+#include "membrane_fixtures.h"
 
 using namespace rbc_ifem;
+using test::create_cell;
+using test::random_vector;
 
 namespace
 {
-  Vector<double>
-  random_vector(const unsigned int n,
-                const double       amplitude,
-                std::mt19937      &random)
-  {
-    std::uniform_real_distribution<double> uniform(-amplitude, amplitude);
-    Vector<double>                         v(n);
-    for (auto &entry : v)
-      entry = uniform(random);
-    return v;
-  }
-
   /// |a - b| / |b|
   double
   relative_difference(const Vector<double> &a, const Vector<double> &b)
@@ -42,10 +30,7 @@ namespace
                const unsigned int degree)
   {
     Triangulation<2, 3> surface;
-    create_cell_surface(surface,
-                        EvansFungShape(7.5),
-                        CellPlacement{Point<3>(), Tensor<1, 3>({0., 0., 1.})},
-                        2);
+    create_cell(surface, 2);
     MembraneParameters parameters;
     parameters.law             = law;
     parameters.degree          = degree;

@@ -232,34 +232,6 @@ namespace rbc_ifem
     phi.integrate(EvaluationFlags::values);
   }
 
-  void
-  StokesOperator::pressure_mass_on_cells(
-    const MatrixFree<3, double>                 &data,
-    PressureVector                              &dst,
-    const PressureVector                        &src,
-    const std::pair<unsigned int, unsigned int> &cells) const
-  {
-    PressureEvaluator phi(data, pressure_index);
-    for (unsigned int cell = cells.first; cell < cells.second; ++cell)
-      {
-        phi.reinit(cell);
-        phi.read_dof_values(src);
-        pressure_mass_on_cell(phi);
-        phi.distribute_local_to_global(dst);
-      }
-  }
-
-  void
-  StokesOperator::apply_pressure_mass(PressureVector       &dst,
-                                      const PressureVector &src) const
-  {
-    matrix_free->cell_loop(
-      &StokesOperator::pressure_mass_on_cells, this, dst, src, true);
-    for (const unsigned int i :
-         matrix_free->get_constrained_dofs(pressure_index))
-      dst.local_element(i) = src.local_element(i);
-  }
-
   std::shared_ptr<DiagonalMatrix<PressureVector>>
   StokesOperator::inverse_pressure_mass_diagonal() const
   {

@@ -76,12 +76,11 @@ namespace rbc_ifem
     level_dofs[fine]        = &fine_dof_handler;
     level_constraints[fine] = &fine_constraints;
 
-    for (unsigned int level = 0; level <= fine; ++level)
-      for (unsigned int level = 1; level <= fine; ++level)
-        transfers[level].reinit(*level_dofs[level],
-                                *level_dofs[level - 1],
-                                *level_constraints[level],
-                                *level_constraints[level - 1]);
+    for (unsigned int level = 1; level <= fine; ++level)
+      transfers[level].reinit(*level_dofs[level],
+                              *level_dofs[level - 1],
+                              *level_constraints[level],
+                              *level_constraints[level - 1]);
     transfer = std::make_unique<Transfer>(
       transfers, [this](const unsigned int level, VelocityVector &v) {
         operators[level]->initialize_dof_vector(v);

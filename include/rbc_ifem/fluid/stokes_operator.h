@@ -95,11 +95,6 @@ namespace rbc_ifem
     apply_pressure_gradient(VelocityVector       &dst,
                             const PressureVector &pressure) const;
 
-    /// dst = M_p src: the pressure mass matrix (identity on constrained
-    /// DoFs).
-    void
-    apply_pressure_mass(PressureVector &dst, const PressureVector &src) const;
-
     /// The inverse diagonal of M_p.
     std::shared_ptr<DiagonalMatrix<PressureVector>>
     inverse_pressure_mass_diagonal() const;
@@ -125,12 +120,6 @@ namespace rbc_ifem
       const std::pair<unsigned int, unsigned int> &cells) const;
     void
     pressure_mass_on_cell(PressureEvaluator &phi) const;
-    void
-    pressure_mass_on_cells(
-      const MatrixFree<3, double>                 &data,
-      PressureVector                              &dst,
-      const PressureVector                        &src,
-      const std::pair<unsigned int, unsigned int> &cells) const;
 
     std::shared_ptr<MatrixFree<3, double>> matrix_free;
     double density = 0., viscosity = 0., time_step = 1.;

@@ -19,10 +19,9 @@ namespace rbc_ifem
    * StokesOperator has them. Ã⁻¹ is one V-cycle of geometric multigrid on
    * the velocity block A = ρ/Δt M + μK (VelocityMultigrid); the Schur
    * complement S = μ B A⁻¹ Bᵀ is, for viscous flow, spectrally equivalent
-   * to the pressure mass matrix, so S̃ = M_p, inverted by CG with its
-   * diagonal to a loose tolerance. Since that inner solve is not a fixed
-   * linear map, the outer solver is FGMRES. Its iteration count does not
-   * grow with the mesh (doc/fluid.md).
+   * to the pressure mass matrix and so to its diagonal: S̃ = diag(M_p).
+   * The outer solver is FGMRES. Its iteration count does not grow with the
+   * mesh (doc/fluid.md).
    */
   class StokesPreconditioner
   {

@@ -17,7 +17,7 @@
 # volume change at 12 ms, the FGMRES iterations per step, the deformation
 # index at 12 ms for Δt, Δt/2, Δt/4 with the observed order, and the largest
 # local area change (max over membrane cells of |A/A0 - 1|) at K = 50 and
-# 500 pN/µm. About 15 minutes on 2 ranks.
+# 500 pN/µm. About 5 minutes on 2 ranks.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 source "$here/benchmarks/common.sh"

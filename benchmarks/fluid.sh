@@ -2,7 +2,8 @@
 # Usage: benchmarks/fluid.sh [RBC_IFEM] [RANKS] [REFINEMENTS...]
 #
 # The Stokes solver at three mesh sizes (fluid global refinements 1, 2, 3,
-# or the ones given: 4 is 4.2 million DoFs, about 4 GB a rank on 2 ranks):
+# or the ones given: 4 is 4.2 million DoFs, 3.2 GB a rank and 2 minutes on
+# 2 ranks):
 # DoFs, Q2 velocity nodes, the velocity multigrid's levels, setup (DoFs,
 # constraints, the matrix-free operators, the multigrid hierarchy, its
 # smoothers and coarse factorisation), and per time step the residual (one

@@ -35,7 +35,7 @@ namespace rbc_ifem
     unsigned int    degree             = 1;        ///< of FE_Q<3> for P
     double          augmentation       = 30.;      ///< γ, dimensionless
     double          nitsche_penalty    = 5.;       ///< × k(k+1), dimensionless
-    double          ghost_penalty      = 0.05;     ///< dimensionless
+    double          ghost_penalty      = 0.01;     ///< dimensionless
     double          linear_tolerance   = 1e-8;     ///< relative, FGMRES
     unsigned int    max_linear_iterations = 1000;
 

@@ -9,16 +9,16 @@
 # and the TimerOutput seconds of mesh, setup (with the cut cells' sampling
 # of the membranes; of it: locating the membrane points, or the level set),
 # assembly (of it: AMG setup), solve and output,
-# with the peak memory of the largest rank. RBC_IFEM defaults to
+# with the peak memory of the largest rank. A second table: the cut cells'
+# DM and CG iterations at band refinements 1 and 2 against the weight of the
+# ghost penalty (Diffusion/Ghost penalty). RBC_IFEM defaults to
 # build/rbc-ifem, RANKS to 1.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 benchmark_setup "$@"
 
-echo "| method | surface, band refinements | DoFs | solver its | DM [µm³ s⁻¹ Torr⁻¹] | mesh [s] | setup [s] | of it: point location or level set [s] | assembly [s] | of it: AMG setup [s] | solve [s] | total without output [s] | output [s] | peak memory [MB] |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
-for run in "Lagrange multiplier:1:3:3" "Lagrange multiplier:1:4:4" "cut cell:2:4:1" "cut cell:2:4:2"; do
-  IFS=: read -r method degree surface band <<<"$run"
+# write_prm METHOD DEGREE SURFACE BAND: run.prm, seven uniform cells.
+write_prm() {
   cat > run.prm <<PRM
 set Experiment = diffusion
 set Output directory = out
@@ -27,22 +27,48 @@ subsection Layout
   set Number of cells = 7
 end
 subsection Cells
-  set Surface refinements = $surface
+  set Surface refinements = $3
 end
 subsection Mesh
   set Diffusion global refinements = 1
-  set Diffusion band refinements = $band
+  set Diffusion band refinements = $4
 end
 subsection Diffusion
-  set Method = $method
-  set Finite element degree = $degree
+  set Method = $1
+  set Finite element degree = $2
 end
 PRM
+}
+
+# solve_summary: "DoFs iterations DM" from the run's log.txt.
+solve_summary() {
+  sed -n 's/.*: \([0-9]*\) DoFs, \([0-9]*\) solver iterations.*DM \([0-9.]*\) .*/\1 \2 \3/p' log.txt
+}
+
+echo "| method | surface, band refinements | DoFs | solver its | DM [µm³ s⁻¹ Torr⁻¹] | mesh [s] | setup [s] | of it: point location or level set [s] | assembly [s] | of it: AMG setup [s] | solve [s] | total without output [s] | output [s] | peak memory [MB] |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+for run in "Lagrange multiplier:1:3:3" "Lagrange multiplier:1:4:4" "cut cell:2:4:1" "cut cell:2:4:2"; do
+  IFS=: read -r method degree surface band <<<"$run"
+  write_prm "$method" "$degree" "$surface" "$band"
   /usr/bin/env time -f "%M" -o memory.txt mpirun -np "$ranks" "$exe" run.prm > log.txt
-  read -r dofs its dm <<<"$(sed -n 's/.*: \([0-9]*\) DoFs, \([0-9]*\) solver iterations.*DM \([0-9.]*\) .*/\1 \2 \3/p' log.txt)"
+  read -r dofs its dm <<<"$(solve_summary)"
   seconds() { awk -F, -v s="\"$1\"" '$1 == s {t += $3} END {printf "%.2f", t}' out/timing.csv; }
   located=$(awk -F, '$1 ~ /"diffusion: point location"|"diffusion: level set"/ {t += $3} END {printf "%.2f", t}' out/timing.csv)
   setup=$(awk -F, '$1 ~ /"diffusion: setup"|"diffusion: membrane sampling"/ {t += $3} END {printf "%.2f", t}' out/timing.csv)
   total=$(awk -F, '$1 ~ /"diffusion mesh"|"diffusion: setup"|"diffusion: membrane sampling"|"diffusion: assemble"|"diffusion: solve"/ {t += $3} END {printf "%.2f", t}' out/timing.csv)
   echo "| $method | $surface, $band | $dofs | $its | $dm | $(seconds "diffusion mesh") | $setup | $located | $(seconds "diffusion: assemble") | $(seconds "diffusion: AMG setup") | $(seconds "diffusion: solve") | $total | $(seconds "diffusion: output") | $(( $(cat memory.txt) / 1024 )) |"
+done
+
+# The ghost penalty's weight against the cut cells' DM and CG iterations
+# (doc/diffusion.md, "Parameters"): 13.971 is the limit.
+echo
+echo "| ghost penalty | band refinements | DoFs | CG its | DM [µm³ s⁻¹ Torr⁻¹] | from 13.971 |"
+echo "|---|---|---|---|---|---|"
+for band in 1 2; do
+  write_prm "cut cell" 2 4 "$band"
+  for ghost in 0.05 0.02 0.01 0.005 0.002; do
+    mpirun -np "$ranks" "$exe" run.prm --set "Diffusion/Ghost penalty=$ghost" > log.txt
+    read -r dofs its dm <<<"$(solve_summary)"
+    echo "| $ghost | $band | $dofs | $its | $dm | $(awk -v d="$dm" 'BEGIN { printf "%+.3f%%", 100 * (d / 13.971 - 1) }') |"
+  done
 done

@@ -16,8 +16,7 @@
 #include <deal.II/hp/q_collection.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
-#include <deal.II/lac/dynamic_sparsity_pattern.h>
-#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/non_matching/fe_values.h>
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/vector_tools.h>
@@ -158,11 +157,10 @@ namespace rbc_ifem
     LinearAlgebra::distributed::Vector<double> owned_values(owned,
                                                             communicator);
     closest_points.clear();
-    // Exact where a cell could be cut, with room to spare (curved cells).
-    for (const auto &[dof, position, reach] : level_set_nodes())
+    for (const auto &[dof, position] : level_set_nodes())
       {
         const MembraneDistance::ClosestPoint closest =
-          distance->closest_point(position, 2. * reach);
+          distance->closest_point(position);
         if (owned.is_element(dof))
           owned_values[dof] = -closest.signed_distance;
         closest_points.emplace(dof, closest);
@@ -184,13 +182,12 @@ namespace rbc_ifem
     classifier->reclassify();
   }
 
-  std::vector<CutCellDiffusion::LevelSetNode>
+  std::vector<std::pair<types::global_dof_index, Point<3>>>
   CutCellDiffusion::level_set_nodes() const
   {
     // Every cell that holds a node of an owned cell shares a vertex with
     // it, so it is owned or a ghost here.
     std::map<types::global_dof_index, std::pair<CellId, Point<3>>> placed;
-    std::map<types::global_dof_index, double>                      reach;
     std::set<types::global_dof_index>                              wanted;
     FEValues<3>                          fe_values(mapping,
                           level_set_fe,
@@ -207,13 +204,10 @@ namespace rbc_ifem
       if (!cell->is_artificial())
         {
           cell->get_dof_indices(dofs);
-          const double diameter  = cell->diameter();
-          bool         evaluated = false;
+          bool evaluated = false;
           for (unsigned int i = 0; i < dofs.size(); ++i)
             if (wanted.count(dofs[i]) > 0)
               {
-                double &r = reach[dofs[i]];
-                r         = std::max(r, diameter);
                 const auto found = placed.find(dofs[i]);
                 if (found != placed.end() && found->second.first < cell->id())
                   continue;
@@ -223,10 +217,10 @@ namespace rbc_ifem
                 placed[dofs[i]] = {cell->id(), fe_values.quadrature_point(i)};
               }
         }
-    std::vector<LevelSetNode> nodes;
+    std::vector<std::pair<types::global_dof_index, Point<3>>> nodes;
     nodes.reserve(placed.size());
     for (const auto &[dof, placement] : placed)
-      nodes.push_back({dof, placement.second, reach[dof]});
+      nodes.emplace_back(dof, placement.second);
     return nodes;
   }
 
@@ -395,9 +389,10 @@ namespace rbc_ifem
       for (const auto &[dof, weight] : line.entries)
         written_rows.add_index(dof);
     written_rows.compress();
-    // Built in deal.II's own pattern and handed to Trilinos whole: inserting
-    // into Epetra's graph entry by entry took a quarter of the setup.
-    DynamicSparsityPattern pattern(written_rows);
+    TrilinosWrappers::SparsityPattern pattern(owned_dofs,
+                                              owned_dofs,
+                                              written_rows,
+                                              communicator);
     DoFTools::make_sparsity_pattern(dof_handler,
                                     pattern,
                                     constraints,
@@ -414,11 +409,8 @@ namespace rbc_ifem
       dofs.insert(dofs.end(), neighbor_dofs.begin(), neighbor_dofs.end());
       constraints.add_entries_local_to_global(dofs, pattern, false);
     });
-    SparsityTools::distribute_sparsity_pattern(pattern,
-                                               owned_dofs,
-                                               communicator,
-                                               written_rows);
-    matrix.reinit(owned_dofs, owned_dofs, pattern, communicator);
+    pattern.compress();
+    matrix.reinit(pattern);
     rhs.reinit(owned_dofs, communicator);
     solution.reinit(owned_dofs, relevant_dofs, communicator);
   }

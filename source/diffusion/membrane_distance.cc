@@ -156,17 +156,8 @@ namespace rbc_ifem
         if (previous.distance_square(xi) < 1e-24)
           break;
       }
-    return at(patch, xi, x);
-  }
-
-  MembraneDistance::ClosestPoint
-  MembraneDistance::at(const Patch    &patch,
-                       const Point<2> &xi,
-                       const Point<3> &x) const
-  {
-    Point<3>     F;
-    Tensor<1, 3> dF0, dF1;
     evaluate(patch, xi, F, dF0, dF1);
+
     ClosestPoint result;
     result.membrane  = patch.membrane;
     result.cell      = patch.cell;
@@ -180,12 +171,6 @@ namespace rbc_ifem
     return result;
   }
 
-  MembraneDistance::ClosestPoint
-  MembraneDistance::at_sample(const std::size_t k, const Point<3> &x) const
-  {
-    return at(patches[sample_patch[k]], sample_xi[k], x);
-  }
-
   std::size_t
   MembraneDistance::PointHash::operator()(const Point<3> &x) const
   {
@@ -196,8 +181,7 @@ namespace rbc_ifem
   }
 
   MembraneDistance::ClosestPoint
-  MembraneDistance::closest_point(const Point<3> &x,
-                                  const double    exact_within) const
+  MembraneDistance::closest_point(const Point<3> &x) const
   {
     const auto known = answers.find(x);
     if (known != answers.end())
@@ -213,17 +197,6 @@ namespace rbc_ifem
     std::vector<std::size_t> nearest;
     for (const Point<3> &image : images)
       {
-        nearest.clear();
-        tree->query(boost::geometry::index::nearest(image, 1),
-                    std::back_inserter(nearest));
-        if (samples[nearest[0]].distance(image) > exact_within)
-          {
-            const ClosestPoint candidate = at_sample(nearest[0], image);
-            if (std::abs(candidate.signed_distance) <
-                std::abs(best.signed_distance))
-              best = candidate;
-            continue;
-          }
         nearest.clear();
         tree->query(boost::geometry::index::nearest(image, n_candidates),
                     std::back_inserter(nearest));
@@ -241,10 +214,7 @@ namespace rbc_ifem
               best = candidate;
           }
       }
-    // Only exact answers are remembered: a far answer is cheap to give
-    // again, and the next question may want it exact.
-    if (std::abs(best.signed_distance) <= exact_within)
-      answers.emplace(x, best);
+    answers.emplace(x, best);
     return best;
   }
 } // namespace rbc_ifem

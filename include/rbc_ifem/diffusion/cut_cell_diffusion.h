@@ -163,23 +163,13 @@ namespace rbc_ifem
 
     void
     compute_level_set();
-    /// A node of the level set: where it is, and the largest diameter of
-    /// the cells that hold it (a node farther than that from every
-    /// membrane is in no cut cell).
-    struct LevelSetNode
-    {
-      types::global_dof_index dof;
-      Point<3>                position;
-      double                  reach;
-    };
-
     /**
-     * The level set nodes of the cells this rank owns, each placed by the
-     * cell with the smallest CellId that holds it (the cells' mappings
-     * differ in the last digits), so that the ranks that share a node, and
-     * any number of ranks, place it alike.
+     * The level set nodes of the cells this rank owns and their positions,
+     * each placed by the cell with the smallest CellId that holds it (the
+     * cells' mappings differ in the last digits), so that the ranks that
+     * share a node, and any number of ranks, place it alike.
      */
-    std::vector<LevelSetNode>
+    std::vector<std::pair<types::global_dof_index, Point<3>>>
     level_set_nodes() const;
     /// The cut cells of this rank that the distance has a ridge in: two of
     /// their level set nodes whose closest points on one membrane face

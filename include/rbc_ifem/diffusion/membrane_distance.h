@@ -8,7 +8,6 @@
 #include <deal.II/grid/tria.h>
 #include <deal.II/numerics/rtree.h>
 
-#include <limits>
 #include <memory>
 #include <optional>
 #include <unordered_map>
@@ -69,18 +68,9 @@ namespace rbc_ifem
      * answer is remembered, so that a point asked again (a level set node
      * of a mesh refined around the membranes and built again) costs a
      * lookup.
-     *
-     * A point farther than @p exact_within [µm] from every membrane is
-     * answered by the nearest sample, without the Gauss-Newton search:
-     * the sign is still exact (the sample's normal sees the point at
-     * nearly the angle the closest point's does) and the distance within
-     * δ²/2d for samples δ apart at distance d. A level set needs no more
-     * where no cell is cut.
      */
     ClosestPoint
-    closest_point(const Point<3> &x,
-                  double exact_within =
-                    std::numeric_limits<double>::infinity()) const;
+    closest_point(const Point<3> &x) const;
 
   private:
     /// One membrane cell as a polynomial patch of degree p.
@@ -103,15 +93,6 @@ namespace rbc_ifem
     /// The closest point to @p x on @p patch, from the start @p xi.
     ClosestPoint
     project(const Patch &patch, const Point<3> &x, Point<2> xi) const;
-
-    /// The point @p xi of @p patch as the answer for @p x: its normal, and
-    /// the distance to it signed by the side of @p x.
-    ClosestPoint
-    at(const Patch &patch, const Point<2> &xi, const Point<3> &x) const;
-
-    /// Sample @p k as the answer for @p x, a point far from the membranes.
-    ClosestPoint
-    at_sample(std::size_t k, const Point<3> &x) const;
 
     std::vector<Polynomials::Polynomial<double>>
                         basis; ///< 1-D Lagrange, degree p

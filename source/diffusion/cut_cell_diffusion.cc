@@ -10,6 +10,7 @@
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_interface_values.h>
 #include <deal.II/fe/fe_nothing.h>
+#include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/hp/mapping_collection.h>
@@ -19,10 +20,12 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/non_matching/fe_values.h>
 #include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/data_postprocessor.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -48,6 +51,39 @@ namespace rbc_ifem
         all.insert(all.end(), found.begin(), found.end());
       return all;
     }
+
+    /**
+     * One side's P with a reaction: on each mesh cell the field that
+     * @p field_on gives (numbers::invalid_unsigned_int: 0, the mesh cell is
+     * wholly on the other side).
+     */
+    class SideField : public DataPostprocessorScalar<3>
+    {
+    public:
+      SideField(
+        const std::string &name,
+        std::function<unsigned int(const DoFHandler<3>::cell_iterator &)>
+          field_on)
+        : DataPostprocessorScalar<3>(name, update_values)
+        , field_on(std::move(field_on))
+      {}
+
+      void
+      evaluate_vector_field(
+        const DataPostprocessorInputs::Vector<3> &inputs,
+        std::vector<Vector<double>>              &computed) const override
+      {
+        const unsigned int field = field_on(inputs.template get_cell<3>());
+        for (unsigned int q = 0; q < computed.size(); ++q)
+          computed[q](0) = field == numbers::invalid_unsigned_int ?
+                             0. :
+                             inputs.solution_values[q](field);
+      }
+
+    private:
+      const std::function<unsigned int(const DoFHandler<3>::cell_iterator &)>
+        field_on;
+    };
 
     bool
     is_cut(const NonMatching::MeshClassifier<3>           &classifier,
@@ -100,6 +136,13 @@ namespace rbc_ifem
   }
 
   void
+  CutCellDiffusion::react_inside_cells(const double cell_permeability,
+                                       const double rate)
+  {
+    reaction = CellReaction{cell_permeability, rate};
+  }
+
+  void
   CutCellDiffusion::setup(
     const parallel::TriangulationBase<3>           &mesh,
     const std::vector<const Triangulation<2, 3> *> &membranes,
@@ -127,17 +170,28 @@ namespace rbc_ifem
     if (membranes.size() == 1 &&
         Utilities::MPI::logical_or(!ridges.empty(), communicator))
       throw_if_unresolved(ridges, SharedCells());
-    const SharedCells shared = locate_surface_points();
+    SharedCells shared = locate_surface_points();
+    if (separate_cells || reaction)
+      add_gap_cells(shared);
     throw_if_unresolved(ridges, shared);
+    if (reaction)
+      {
+        find_cell_membranes();
+        colour_membranes();
+      }
     {
       TimerOutput::Scope dofs_scope(timer, "diffusion: DoFs and constraints");
       distribute_dofs();
+      const IndexSet unused = unused_field_dofs();
+      n_unused_dofs =
+        Utilities::MPI::sum((unused & owned_dofs).n_elements(), communicator);
       make_pressure_constraints(dof_handler,
                                 mapping,
                                 pressure_boundary,
                                 parameters.alveolar_pressure,
                                 period,
-                                constraints);
+                                constraints,
+                                unused);
     }
     setup_matrix();
   }
@@ -231,6 +285,33 @@ namespace rbc_ifem
   }
 
   void
+  CutCellDiffusion::separate_insides(const bool separate)
+  {
+    separate_cells = separate;
+  }
+
+  void
+  CutCellDiffusion::add_gap_cells(SharedCells &shared) const
+  {
+    std::vector<types::global_dof_index> dofs(level_set_fe.n_dofs_per_cell());
+    for (const auto &cell : level_set_dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned() && is_cut(*classifier, cell))
+        {
+          cell->get_dof_indices(dofs);
+          const unsigned int first = closest_points.at(dofs[0]).membrane;
+          for (const auto dof : dofs)
+            if (const unsigned int other = closest_points.at(dof).membrane;
+                other != first)
+              {
+                shared.cells.push_back(cell->id());
+                shared.membranes = {std::min(first, other),
+                                    std::max(first, other)};
+                break;
+              }
+        }
+  }
+
+  void
   CutCellDiffusion::share_membrane_distance(
     std::shared_ptr<const MembraneDistance> distance)
   {
@@ -286,10 +367,8 @@ namespace rbc_ifem
     dof_handler.reinit(*mesh);
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
-        cell->set_active_fe_index(classifier->location_to_level_set(cell) ==
-                                      NonMatching::LocationToLevelSet::outside ?
-                                    ActiveFE::nothing :
-                                    ActiveFE::lagrange);
+        cell->set_active_fe_index(fields_on(cell).empty() ? ActiveFE::nothing :
+                                                            ActiveFE::lagrange);
     dof_handler.distribute_dofs(fe_collection);
     owned_dofs = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
@@ -352,17 +431,171 @@ namespace rbc_ifem
     return shared;
   }
 
-  bool
-  CutCellDiffusion::face_has_ghost_penalty(
+  std::vector<unsigned int>
+  CutCellDiffusion::fields_on(const Triangulation<3>::cell_iterator &cell) const
+  {
+    const NonMatching::LocationToLevelSet location =
+      classifier->location_to_level_set(cell);
+    std::vector<unsigned int> fields;
+    if (location != NonMatching::LocationToLevelSet::outside)
+      fields.push_back(0);
+    if (reaction && location != NonMatching::LocationToLevelSet::inside)
+      fields.push_back(
+        1 + membrane_colour[cell_membrane[cell->active_cell_index()]]);
+    return fields;
+  }
+
+  void
+  CutCellDiffusion::find_cell_membranes()
+  {
+    // The level set node deepest inside a red cell is closer to its
+    // membrane than to any other: the straight line to another crosses it.
+    cell_membrane.assign(mesh->n_active_cells(), numbers::invalid_unsigned_int);
+    FEValues<3>                          nodes(mapping,
+                      level_set_fe,
+                      Quadrature<3>(level_set_fe.get_unit_support_points()),
+                      update_quadrature_points);
+    std::vector<types::global_dof_index> dofs(level_set_fe.n_dofs_per_cell());
+    for (const auto &cell : level_set_dof_handler.active_cell_iterators())
+      if (!cell->is_artificial() && classifier->location_to_level_set(cell) !=
+                                      NonMatching::LocationToLevelSet::inside)
+        {
+          cell->get_dof_indices(dofs);
+          const auto deepest =
+            std::max_element(dofs.begin(), dofs.end(), [&](auto a, auto b) {
+              return level_set[a] < level_set[b];
+            });
+          nodes.reinit(cell);
+          cell_membrane[cell->active_cell_index()] =
+            distance
+              ->closest_point(
+                nodes.quadrature_point(std::distance(dofs.begin(), deepest)))
+              .membrane;
+        }
+  }
+
+  void
+  CutCellDiffusion::colour_membranes()
+  {
+    // Each membrane's box around the mesh cells that reach into it.
+    const unsigned int  n = membranes.size();
+    std::vector<double> lower(3 * n, std::numeric_limits<double>::max()),
+      upper(3 * n, std::numeric_limits<double>::lowest());
+    for (const auto &cell : mesh->active_cell_iterators())
+      if (cell->is_locally_owned() &&
+          cell_membrane[cell->active_cell_index()] !=
+            numbers::invalid_unsigned_int)
+        {
+          const unsigned int m = cell_membrane[cell->active_cell_index()];
+          for (const unsigned int v : cell->vertex_indices())
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                lower[3 * m + d] =
+                  std::min(lower[3 * m + d], cell->vertex(v)[d]);
+                upper[3 * m + d] =
+                  std::max(upper[3 * m + d], cell->vertex(v)[d]);
+              }
+        }
+    Utilities::MPI::min(lower, communicator, lower);
+    Utilities::MPI::max(upper, communicator, upper);
+    // Boxes that touch (shifted by a period along x too) share mesh
+    // vertices or faces, or may: their membranes get different colours.
+    const auto touch = [&](const unsigned int a, const unsigned int b) {
+      const double tolerance = 1e-8 * (upper[0] - lower[0] + 1.);
+      for (const double shift : period ?
+                                  std::vector<double>{0., *period, -*period} :
+                                  std::vector<double>{0.})
+        {
+          bool overlap = true;
+          for (unsigned int d = 0; d < 3; ++d)
+            {
+              const double s = d == 0 ? shift : 0.;
+              overlap        = overlap &&
+                        lower[3 * a + d] <= upper[3 * b + d] + s + tolerance &&
+                        lower[3 * b + d] + s <= upper[3 * a + d] + tolerance;
+            }
+          if (overlap)
+            return true;
+        }
+      return false;
+    };
+    membrane_colour.assign(n, 0);
+    unsigned int n_colours = 1;
+    for (unsigned int a = 0; a < n; ++a)
+      {
+        std::vector<bool> taken(n, false);
+        for (unsigned int b = 0; b < a; ++b)
+          if (touch(a, b))
+            taken[membrane_colour[b]] = true;
+        membrane_colour[a] =
+          std::find(taken.begin(), taken.end(), false) - taken.begin();
+        n_colours = std::max(n_colours, membrane_colour[a] + 1);
+      }
+    fe_collection = hp::FECollection<3>(FESystem<3>(FE_Q<3>(parameters.degree),
+                                                    1 + n_colours),
+                                        FE_Nothing<3>(1 + n_colours));
+  }
+
+  std::vector<unsigned int>
+  CutCellDiffusion::ghost_penalty_fields(
     const DoFHandler<3>::active_cell_iterator &cell,
     const unsigned int                         face) const
   {
-    if (cell->at_boundary(face) || cell->active_fe_index() != lagrange)
-      return false;
+    if (cell->at_boundary(face) || cell->neighbor(face)->has_children())
+      return {};
     const auto neighbor = cell->neighbor(face);
-    if (neighbor->has_children() || neighbor->active_fe_index() != lagrange)
-      return false;
-    return is_cut(*classifier, cell) || is_cut(*classifier, neighbor);
+    if (!is_cut(*classifier, cell) && !is_cut(*classifier, neighbor))
+      return {};
+    const std::vector<unsigned int> here  = fields_on(cell),
+                                    there = fields_on(neighbor);
+    std::vector<unsigned int> both;
+    std::set_intersection(here.begin(),
+                          here.end(),
+                          there.begin(),
+                          there.end(),
+                          std::back_inserter(both));
+    return both;
+  }
+
+  IndexSet
+  CutCellDiffusion::unused_field_dofs() const
+  {
+    if (!reaction)
+      return IndexSet(dof_handler.n_dofs());
+    // Marked on the owned cells and summed on the owners, so that the ranks
+    // agree on every DoF they share.
+    LinearAlgebra::distributed::Vector<double> used(owned_dofs,
+                                                    relevant_dofs,
+                                                    communicator);
+    const FiniteElement<3>                    &fe = fe_collection[lagrange];
+    std::vector<types::global_dof_index>       dofs(fe.n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const std::vector<unsigned int> fields = fields_on(cell);
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            if (std::count(fields.begin(),
+                           fields.end(),
+                           fe.system_to_component_index(i).first) > 0)
+              used[dofs[i]] = 1.;
+        }
+    // A used node that hangs on a coarser face needs the nodes it hangs on,
+    // whichever side's cell holds them.
+    AffineConstraints<double> hanging(relevant_dofs);
+    DoFTools::make_hanging_node_constraints(dof_handler, hanging);
+    for (const auto &line : hanging.get_lines())
+      if (used[line.index] > 0.)
+        for (const auto &[dof, weight] : line.entries)
+          used[dof] = 1.;
+    used.compress(VectorOperation::add);
+    used.update_ghost_values();
+    IndexSet unused(dof_handler.n_dofs());
+    for (const auto dof : relevant_dofs)
+      if (used[dof] == 0.)
+        unused.add_index(dof);
+    unused.compress();
+    return unused;
   }
 
   template <typename Function>
@@ -372,7 +605,7 @@ namespace rbc_ifem
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         for (const unsigned int face : cell->face_indices())
-          if (face_has_ghost_penalty(cell, face) &&
+          if (!ghost_penalty_fields(cell, face).empty() &&
               (cell->neighbor_is_coarser(face) ||
                cell->id() < cell->neighbor(face)->id()))
             f(cell, face);
@@ -429,13 +662,23 @@ namespace rbc_ifem
                                                       level_set);
   }
 
-  double
-  CutCellDiffusion::nitsche_weight(
+  CutCellDiffusion::MembraneCoupling
+  CutCellDiffusion::membrane_coupling(
     const DoFHandler<3>::active_cell_iterator &cell) const
   {
-    const unsigned int k = parameters.degree;
-    return parameters.nitsche_penalty * k * (k + 1) *
-           permeability(cell->material_id()) / cell->minimum_vertex_distance();
+    const unsigned int k      = parameters.degree;
+    const double       h      = cell->minimum_vertex_distance();
+    const double       gamma  = parameters.nitsche_penalty * k * (k + 1) / h;
+    const double       plasma = permeability(cell->material_id());
+    if (!reaction)
+      return {plasma, 0., gamma * plasma};
+    const double inside = reaction->permeability;
+    const double mh     = std::sqrt(reaction->rate / inside) * h;
+    const double stiff  = inside * std::sqrt(1. + mh * mh);
+    const double w0 = stiff / (plasma + stiff), w1 = 1. - w0;
+    return {w0 * plasma,
+            w1 * inside,
+            2. * gamma * (w0 * w0 * plasma + w1 * w1 * inside)};
   }
 
   void
@@ -462,48 +705,93 @@ namespace rbc_ifem
   CutCellDiffusion::assemble_cells()
   {
     NonMatching::RegionUpdateFlags flags;
-    flags.inside  = update_gradients | update_JxW_values;
+    flags.inside = update_gradients | update_JxW_values;
+    if (reaction)
+      flags.outside = update_values | update_gradients | update_JxW_values;
     flags.surface = update_values | update_gradients | update_JxW_values |
                     update_normal_vectors;
     const auto                fe_values_ptr = cut_cell_values(flags);
     NonMatching::FEValues<3> &fe_values     = *fe_values_ptr;
-    const unsigned int        n = fe_collection[lagrange].n_dofs_per_cell();
-    FullMatrix<double>        cell_matrix(n, n);
-    Vector<double>            cell_rhs(n);
+    const FiniteElement<3>   &fe            = fe_collection[lagrange];
+    const unsigned int        n             = fe.n_dofs_per_cell();
+    // The field of each shape function (0 the plasma's, 1 + c the inside
+    // of the red cells of colour c), the sign it has in the jump
+    // [P] = P₀ − P₁ across the membrane (P₁ = 0 for the membrane sink), and
+    // on each mesh cell which shape functions are on its side (1), the
+    // plasma's (0), or neither (-1: another colour's).
+    std::vector<unsigned int> field(n);
+    std::vector<int>          side(n);
+    std::vector<double>       jump_sign(n), flux(n), jump(n);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        field[i]     = fe.system_to_component_index(i).first;
+        jump_sign[i] = field[i] == 0 ? 1. : -1.;
+      }
+    FullMatrix<double>                   cell_matrix(n, n);
+    Vector<double>                       cell_rhs(n);
     std::vector<types::global_dof_index> dofs(n);
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned() && cell->active_fe_index() == lagrange)
         {
           fe_values.reinit(cell);
-          const double alpha_D = permeability(cell->material_id());
-          cell_matrix          = 0.;
+          cell_matrix                            = 0.;
+          const std::vector<unsigned int> fields = fields_on(cell);
+          for (unsigned int i = 0; i < n; ++i)
+            side[i] = field[i] == 0 ? 0 : field[i] == fields.back() ? 1 : -1;
+          // The plasma side: (αD ∇P₀, ∇q₀).
           if (const auto &inside = fe_values.get_inside_fe_values())
-            for (const unsigned int q : inside->quadrature_point_indices())
-              for (unsigned int i = 0; i < n; ++i)
-                for (unsigned int j = 0; j < n; ++j)
-                  cell_matrix(i, j) += alpha_D * inside->shape_grad(i, q) *
-                                       inside->shape_grad(j, q) *
-                                       inside->JxW(q);
+            {
+              const double alpha_D = permeability(cell->material_id());
+              for (const unsigned int q : inside->quadrature_point_indices())
+                for (unsigned int i = 0; i < n; ++i)
+                  if (side[i] == 0)
+                    for (unsigned int j = 0; j < n; ++j)
+                      if (side[j] == 0)
+                        cell_matrix(i, j) +=
+                          alpha_D * inside->shape_grad(i, q) *
+                          inside->shape_grad(j, q) * inside->JxW(q);
+            }
+          // The cell side: (α_cD_c ∇P₁, ∇q₁) + (k P₁, q₁).
+          if (reaction)
+            if (const auto &outside = fe_values.get_outside_fe_values())
+              for (const unsigned int q : outside->quadrature_point_indices())
+                for (unsigned int i = 0; i < n; ++i)
+                  if (side[i] == 1)
+                    for (unsigned int j = 0; j < n; ++j)
+                      if (side[j] == 1)
+                        cell_matrix(i, j) +=
+                          (reaction->permeability * outside->shape_grad(i, q) *
+                             outside->shape_grad(j, q) +
+                           reaction->rate * outside->shape_value(i, q) *
+                             outside->shape_value(j, q)) *
+                          outside->JxW(q);
           if (const auto &surface = fe_values.get_surface_fe_values())
             {
-              // P = 0 on the membrane: the symmetric Nitsche terms.
-              const double penalty = nitsche_weight(cell);
+              // The symmetric Nitsche terms on the membrane: P = 0, or the
+              // two sides glued.
+              const MembraneCoupling coupling       = membrane_coupling(cell);
+              const double           flux_weight[2] = {coupling.plasma_flux,
+                                                       coupling.cell_flux};
               for (const unsigned int q : surface->quadrature_point_indices())
                 {
+                  // {αD ∂ₙφ_i} and [φ_i], once per shape function.
                   const Tensor<1, 3> &normal = surface->normal_vector(q);
                   for (unsigned int i = 0; i < n; ++i)
-                    {
-                      const double flux_i =
-                        alpha_D * (normal * surface->shape_grad(i, q));
-                      const double v_i = surface->shape_value(i, q);
-                      for (unsigned int j = 0; j < n; ++j)
-                        cell_matrix(i, j) +=
-                          (-flux_i * surface->shape_value(j, q) -
-                           alpha_D * (normal * surface->shape_grad(j, q)) *
-                             v_i +
-                           penalty * v_i * surface->shape_value(j, q)) *
-                          surface->JxW(q);
-                    }
+                    if (side[i] >= 0)
+                      {
+                        flux[i] = flux_weight[side[i]] *
+                                  (normal * surface->shape_grad(i, q));
+                        jump[i] = jump_sign[i] * surface->shape_value(i, q);
+                      }
+                    else
+                      flux[i] = jump[i] = 0.;
+                  const double JxW = surface->JxW(q);
+                  for (unsigned int i = 0; i < n; ++i)
+                    for (unsigned int j = 0; j < n; ++j)
+                      cell_matrix(i, j) +=
+                        (-flux[i] * jump[j] - flux[j] * jump[i] +
+                         coupling.penalty * jump[i] * jump[j]) *
+                        JxW;
                 }
             }
           cell->get_dof_indices(dofs);
@@ -550,33 +838,36 @@ namespace rbc_ifem
                                 neighbor,
                                 cell->neighbor_of_neighbor(face),
                                 numbers::invalid_unsigned_int);
-      // γ_g αD h^(2j-1) ([∂ₙʲP], [∂ₙʲq]) for j = 1 .. k (k <= 2 here: the
-      // third derivatives of Q3 are not penalised).
-      const double h = cell->minimum_vertex_distance();
-      const double weight =
-        parameters.ghost_penalty * permeability(cell->material_id());
+      const double       h = cell->minimum_vertex_distance();
       const unsigned int n = interface_values.n_current_interface_dofs();
       local.reinit(n, n);
-      for (const unsigned int q : interface_values.quadrature_point_indices())
+      for (const unsigned int f : ghost_penalty_fields(cell, face))
         {
-          // The jumps of ∂ₙφ_i and ∂ₙₙφ_i, once per shape function.
-          const Tensor<1, 3> &normal = interface_values.normal(q);
-          for (unsigned int i = 0; i < n; ++i)
+          // γ_g αD h^(2j-1) ([∂ₙʲP], [∂ₙʲq]) for j = 1 .. k (k <= 2 here:
+          // the third derivatives of Q3 are not penalised), for the field f.
+          const auto   jumps  = interface_values[FEValuesExtractors::Scalar(f)];
+          const double weight = parameters.ghost_penalty *
+                                (f == 0 ? permeability(cell->material_id()) :
+                                          reaction->permeability);
+          for (const unsigned int q :
+               interface_values.quadrature_point_indices())
             {
-              first[i] =
-                normal * interface_values.jump_in_shape_gradients(i, q);
-              second[i] =
-                k > 1 ?
-                  normal *
-                    (interface_values.jump_in_shape_hessians(i, q) * normal) :
-                  0.;
+              // The jumps of ∂ₙφ_i and ∂ₙₙφ_i, once per shape function.
+              const Tensor<1, 3> &normal = interface_values.normal(q);
+              for (unsigned int i = 0; i < n; ++i)
+                {
+                  first[i] = normal * jumps.jump_in_gradients(i, q);
+                  second[i] =
+                    k > 1 ? normal * (jumps.jump_in_hessians(i, q) * normal) :
+                            0.;
+                }
+              const double w1 = weight * h * interface_values.JxW(q);
+              const double w2 = weight * h * h * h * interface_values.JxW(q);
+              for (unsigned int i = 0; i < n; ++i)
+                for (unsigned int j = 0; j < n; ++j)
+                  local(i, j) +=
+                    w1 * first[i] * first[j] + w2 * second[i] * second[j];
             }
-          const double w1 = weight * h * interface_values.JxW(q);
-          const double w2 = weight * h * h * h * interface_values.JxW(q);
-          for (unsigned int i = 0; i < n; ++i)
-            for (unsigned int j = 0; j < n; ++j)
-              local(i, j) +=
-                w1 * first[i] * first[j] + w2 * second[i] * second[j];
         }
       dofs = interface_values.get_interface_dof_indices();
       local_rhs.reinit(n);
@@ -653,9 +944,10 @@ namespace rbc_ifem
         projected[m].reinit(flux_dof_handlers.back()->n_dofs());
       }
 
-    // j = -αD ∂ₙP + penalty P at each surface point, to its membrane.
-    std::vector<double>                  values;
-    std::vector<Tensor<1, 3>>            gradients;
+    // j = −{αD ∂ₙP} + β [P] at each surface point, to its membrane (P₁ = 0
+    // and {αD ∂ₙP} = αD ∂ₙP₀ for the membrane sink).
+    std::vector<double>                  values, field_values;
+    std::vector<Tensor<1, 3>>            gradients, field_gradients;
     std::vector<types::global_dof_index> flux_dofs(flux_fe.n_dofs_per_cell());
     flows.assign(membranes.size(), 0.);
     for (const auto &cell : dof_handler.active_cell_iterators())
@@ -667,17 +959,30 @@ namespace rbc_ifem
         const auto          &surface = fe_values.get_surface_fe_values();
         const SurfacePoints &points  = found->second;
         AssertDimension(surface->n_quadrature_points, points.size());
-        values.resize(points.size());
-        gradients.resize(points.size());
-        surface->get_function_values(solution, values);
-        surface->get_function_gradients(solution, gradients);
-        const double alpha_D = permeability(cell->material_id());
-        const double penalty = nitsche_weight(cell);
+        // values: [P]; gradients: w₀ αD ∇P₀ + w₁ α_cD_c ∇P₁.
+        const MembraneCoupling coupling       = membrane_coupling(cell);
+        const double           flux_weight[2] = {coupling.plasma_flux,
+                                                 coupling.cell_flux};
+        values.assign(points.size(), 0.);
+        gradients.assign(points.size(), Tensor<1, 3>());
+        field_values.resize(points.size());
+        field_gradients.resize(points.size());
+        for (const unsigned int f : fields_on(cell))
+          {
+            const FEValuesExtractors::Scalar field(f);
+            (*surface)[field].get_function_values(solution, field_values);
+            (*surface)[field].get_function_gradients(solution, field_gradients);
+            for (unsigned int q = 0; q < points.size(); ++q)
+              {
+                values[q] += (f == 0 ? 1. : -1.) * field_values[q];
+                gradients[q] +=
+                  flux_weight[f == 0 ? 0 : 1] * field_gradients[q];
+              }
+          }
         for (const unsigned int q : surface->quadrature_point_indices())
           {
-            const double j =
-              -alpha_D * (gradients[q] * surface->normal_vector(q)) +
-              penalty * values[q];
+            const double j = -(gradients[q] * surface->normal_vector(q)) +
+                             coupling.penalty * values[q];
             const MembraneDistance::ClosestPoint &point = points[q];
             flows[point.membrane] += j * surface->JxW(q);
             const DoFHandler<2, 3>::active_cell_iterator membrane_cell(
@@ -730,7 +1035,7 @@ namespace rbc_ifem
   types::global_dof_index
   CutCellDiffusion::n_dofs() const
   {
-    return dof_handler.n_dofs();
+    return dof_handler.n_dofs() - n_unused_dofs;
   }
 
   CutCellDiffusion::OutputFiles
@@ -752,12 +1057,29 @@ namespace rbc_ifem
     data_out.set_cell_selection(
       [this](const typename Triangulation<3>::cell_iterator &cell) {
         return cell->is_active() && cell->is_locally_owned() &&
-               classifier->location_to_level_set(cell) !=
-                 NonMatching::LocationToLevelSet::outside;
+               !fields_on(cell).empty();
       });
     data_out.set_flags(fast_vtk_flags());
     data_out.attach_dof_handler(dof_handler);
-    data_out.add_data_vector(solution, "co_pressure");
+    // With a reaction, P inside the cells is a field of its own (one per
+    // colour): zero outside them, as the plasma's is inside.
+    const auto side = [this](const bool plasma) {
+      return [this, plasma](const DoFHandler<3>::cell_iterator &cell) {
+        const std::vector<unsigned int> fields = fields_on(cell);
+        const bool there = plasma ? fields.front() == 0 : fields.back() > 0;
+        return there ? (plasma ? 0u : fields.back()) :
+                       numbers::invalid_unsigned_int;
+      };
+    };
+    const SideField plasma_pressure("co_pressure", side(true)),
+      cell_pressure("co_pressure_cell", side(false));
+    if (reaction)
+      {
+        data_out.add_data_vector(solution, plasma_pressure);
+        data_out.add_data_vector(solution, cell_pressure);
+      }
+    else
+      data_out.add_data_vector(solution, "co_pressure");
     data_out.add_data_vector(level_set_dof_handler,
                              membrane_distance,
                              "membrane_distance");

@@ -155,9 +155,12 @@ namespace rbc_ifem
     const std::function<double(unsigned int)> &permeability,
     const MPI_Comm                             communicator)
   {
-    const IndexSet boundary_dofs =
-      DoFTools::extract_boundary_dofs(dof_handler, ComponentMask(), {boundary});
-    const auto        &fe_collection = dof_handler.get_fe_collection();
+    const auto   &fe_collection = dof_handler.get_fe_collection();
+    ComponentMask first(fe_collection.n_components(), false);
+    first.set(0, true);
+    const FEValuesExtractors::Scalar pressure(0);
+    const IndexSet                   boundary_dofs =
+      DoFTools::extract_boundary_dofs(dof_handler, first, {boundary});
     hp::QCollection<3> quadrature;
     for (unsigned int i = 0; i < fe_collection.size(); ++i)
       quadrature.push_back(
@@ -182,13 +185,14 @@ namespace rbc_ifem
           hp_fe_values.reinit(cell);
           const FEValues<3> &fe_values = hp_fe_values.get_present_fe_values();
           gradients.resize(fe_values.n_quadrature_points);
-          fe_values.get_function_gradients(P, gradients);
+          fe_values[pressure].get_function_gradients(P, gradients);
           const double alpha_D = permeability(cell->material_id());
           for (unsigned int i = 0; i < dofs.size(); ++i)
             if (boundary_dofs.is_element(dofs[i]))
               for (const unsigned int q : fe_values.quadrature_point_indices())
                 local_flow += alpha_D * gradients[q] *
-                              fe_values.shape_grad(i, q) * fe_values.JxW(q);
+                              fe_values[pressure].gradient(i, q) *
+                              fe_values.JxW(q);
         }
     return Utilities::MPI::sum(local_flow, communicator);
   }
@@ -200,19 +204,28 @@ namespace rbc_ifem
     const types::boundary_id     pressure_boundary,
     const double                 pressure,
     const std::optional<double> &period,
-    AffineConstraints<double>   &constraints)
+    AffineConstraints<double>   &constraints,
+    const IndexSet              &zero_dofs)
   {
     IndexSet relevant_dofs;
     DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
     constraints.clear();
     constraints.reinit(relevant_dofs);
     DoFTools::make_hanging_node_constraints(dof_handler, constraints);
-    VectorTools::interpolate_boundary_values(hp::MappingCollection<3>(mapping),
-                                             dof_handler,
-                                             pressure_boundary,
-                                             Functions::ConstantFunction<3>(
-                                               pressure),
-                                             constraints);
+    for (const auto dof : zero_dofs)
+      if (!constraints.is_constrained(dof))
+        constraints.add_line(dof);
+    const unsigned int n_components =
+      dof_handler.get_fe_collection().n_components();
+    ComponentMask first(n_components, false);
+    first.set(0, true);
+    VectorTools::interpolate_boundary_values(
+      hp::MappingCollection<3>(mapping),
+      dof_handler,
+      pressure_boundary,
+      Functions::ConstantFunction<3>(pressure, n_components),
+      constraints,
+      first);
     if (period)
       {
         std::vector<GridTools::PeriodicFacePair<DoFHandler<3>::cell_iterator>>

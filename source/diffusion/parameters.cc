@@ -19,7 +19,27 @@ namespace rbc_ifem
         {DiffusionMethod::cut_cell, "cut cell"}};
       return names;
     }
+
+    const SelectionNames<CellUptake> &
+    uptake_names()
+    {
+      static const SelectionNames<CellUptake> names{
+        {CellUptake::membrane_sink, "membrane sink"},
+        {CellUptake::reaction, "reaction"}};
+      return names;
+    }
   } // namespace
+
+  const SelectionNames<ThetaModel> &
+  theta_model_names()
+  {
+    static const SelectionNames<ThetaModel> names{
+      {ThetaModel::given, "given"},
+      {ThetaModel::roughton_forster_1957, "Roughton-Forster 1957"},
+      {ThetaModel::forster_1987, "Forster 1987"},
+      {ThetaModel::guenard_2016, "Guenard 2016"}};
+    return names;
+  }
 
   void
   DiffusionParameters::add_parameters(ParameterHandler &prm)
@@ -131,7 +151,78 @@ namespace rbc_ifem
                   "The linear solver gives up (and the run stops) after this "
                   "many iterations.",
                   Patterns::Integer(1));
+    add_reaction_parameters(prm);
     prm.leave_subsection();
+  }
+
+  void
+  DiffusionParameters::add_reaction_parameters(ParameterHandler &prm)
+  {
+    add_selection(
+      prm,
+      "Uptake",
+      uptake,
+      uptake_names(),
+      "What the red cells do with CO. membrane sink (the paper's model): "
+      "P = 0 on every membrane, CO is bound the instant it enters; the "
+      "result is DM. reaction: CO diffuses on into the cytoplasm "
+      "(Cytoplasm diffusivity and solubility) and is bound there at the "
+      "finite rate θ_CO (Theta model); each uptake solve then also solves "
+      "this problem and dm.csv gains dl_total,dl_cell_i, the diffusing "
+      "capacity DL it gives. Needs Method = cut cell (doc/physiology.md).");
+    add_parameter(prm,
+                  "Cytoplasm diffusivity",
+                  cytoplasm_diffusivity,
+                  "reaction only: CO diffusion coefficient D inside the red "
+                  "cells [µm²/s]. An assumption, not a measured value: "
+                  "small gases diffuse in the cells' concentrated "
+                  "hemoglobin (33 g/dL) at roughly a third of their speed "
+                  "in plasma; doc/physiology.md shows how DL depends on it.",
+                  Patterns::Double(0.));
+    add_parameter(prm,
+                  "Cytoplasm solubility",
+                  cytoplasm_solubility,
+                  "reaction only: CO solubility α inside the red cells "
+                  "[Torr⁻¹], the plasma's: the Bunsen coefficients of CO "
+                  "at 37 °C in saline and in whole blood, 0.0180 and "
+                  "0.0189, differ by 5% (doc/physiology.md).",
+                  Patterns::Double(0.));
+    add_selection(
+      prm,
+      "Theta model",
+      theta_model,
+      theta_model_names(),
+      "reaction only: where θ_CO, the CO uptake of blood per Torr of CO "
+      "pressure in its plasma [mL CO min⁻¹ Torr⁻¹ per mL of blood], comes "
+      "from. given: Theta. The others are 1/θ = a + b PO₂ for blood of "
+      "14.6 g/dL hemoglobin, as the ATS/ERS standard lists them (Zavorsky "
+      "et al., Eur. Respir. J. 49 (2017) 1600962): Roughton-Forster 1957 "
+      "1.0 + 0.0058 PO₂ (pH 8.0), Forster 1987 1.30 + 0.0041 PO₂ (pH 7.4), "
+      "Guenard 2016 1.16 + 0.0062 PO₂ (the standard's recommendation). PO₂ "
+      "is Oxygen pressure.");
+    add_parameter(prm,
+                  "Theta",
+                  theta,
+                  "reaction, Theta model = given: θ_CO [mL CO min⁻¹ "
+                  "Torr⁻¹ per mL of blood]. The default, 1/0.82, is the "
+                  "thin-film measurements' (Hughes & van der Lee, Eur. "
+                  "Respir. J. 41 (2013) 453, Table 4).",
+                  Patterns::Double(0.));
+    add_parameter(prm,
+                  "Oxygen pressure",
+                  oxygen_pressure,
+                  "reaction: the O₂ partial pressure PO₂ the Theta model "
+                  "takes [Torr]; about 100 in alveolar capillaries at rest.",
+                  Patterns::Double(0.));
+    add_parameter(prm,
+                  "Hematocrit",
+                  hematocrit,
+                  "reaction: the volume fraction H of cells in the blood "
+                  "θ_CO is given for (dimensionless, 0 < H <= 1); the "
+                  "cytoplasm binds θ/H per mL of cells. The formulas' "
+                  "14.6 g/dL of hemoglobin is H = 0.44 at the normal 33 "
+                  "g/dL inside the cells.",
+                  Patterns::Double(0., 1.));
   }
 
   void
@@ -148,9 +239,48 @@ namespace rbc_ifem
       {"Diffusion/Augmentation", augmentation},
       {"Diffusion/Nitsche penalty", nitsche_penalty},
       {"Diffusion/Ghost penalty", ghost_penalty},
-      {"Diffusion/Linear solver tolerance", linear_tolerance}};
+      {"Diffusion/Linear solver tolerance", linear_tolerance},
+      {"Diffusion/Cytoplasm diffusivity", cytoplasm_diffusivity},
+      {"Diffusion/Cytoplasm solubility", cytoplasm_solubility},
+      {"Diffusion/Theta", theta},
+      {"Diffusion/Hematocrit", hematocrit}};
     for (const auto &[name, value] : positive)
       require_positive(name, value, "");
+    if (uptake == CellUptake::reaction && method != DiffusionMethod::cut_cell)
+      throw InputError("Diffusion/Uptake",
+                       "reaction",
+                       "the reaction inside the cells needs the cell "
+                       "interiors in the mesh: set Diffusion/Method = cut "
+                       "cell (it is '" +
+                         name_of(method, method_names()) + "').");
+  }
+
+  double
+  DiffusionParameters::theta_blood() const
+  {
+    switch (theta_model)
+      {
+        case ThetaModel::roughton_forster_1957:
+          return 1. / (1.0 + 0.0058 * oxygen_pressure);
+        case ThetaModel::forster_1987:
+          return 1. / (1.30 + 0.0041 * oxygen_pressure);
+        case ThetaModel::guenard_2016:
+          return 1. / (1.16 + 0.0062 * oxygen_pressure);
+        default:
+          return theta;
+      }
+  }
+
+  double
+  DiffusionParameters::reaction_rate() const
+  {
+    return theta_blood() / hematocrit / 60.;
+  }
+
+  double
+  DiffusionParameters::cytoplasm_permeability() const
+  {
+    return cytoplasm_solubility * cytoplasm_diffusivity;
   }
 
   double

@@ -171,6 +171,8 @@ namespace rbc_ifem
             timer,
             geometry.period());
           cut_cells->refine_ridges(refine_ridges);
+          // The reaction's solve (solve_with_reaction()) comes on this mesh.
+          cut_cells->separate_insides(d.uptake == CellUptake::reaction);
           cut_cells->share_membrane_distance(std::move(distance));
           diffusion = std::move(cut_cells);
         }
@@ -225,7 +227,6 @@ namespace rbc_ifem
           geometry, mesh_parameters, surfaces, band_refinements, {}};
         mesh = make_uptake_mesh(recipe, d.method, communicator, timer);
         // Cut cells: the membranes sampled once for every attempt below.
-        std::shared_ptr<const MembraneDistance> distance;
         if (d.method == DiffusionMethod::cut_cell)
           {
             TimerOutput::Scope scope(timer, "diffusion: membrane sampling");
@@ -282,7 +283,42 @@ namespace rbc_ifem
 
       std::unique_ptr<parallel::TriangulationBase<3>> mesh;
       std::unique_ptr<DiffusionSolver>                diffusion;
+      /// Cut cells: the distance to the membranes.
+      std::shared_ptr<const MembraneDistance> distance;
     };
+
+    /**
+     * The finite-uptake problem of @p d with the binding rate @p rate
+     * (CutCellDiffusion with a reaction inside the cells) on the mesh of
+     * @p setup, assembled and solved.
+     */
+    std::unique_ptr<DiffusionSolver>
+    solve_with_reaction(
+      const UptakeSetup                              &setup,
+      const GeometryParameters                       &geometry,
+      const DiffusionParameters                      &d,
+      const std::vector<const Triangulation<2, 3> *> &surfaces,
+      const MappingQ<2, 3>                           &mapping,
+      const double                                    rate,
+      const MPI_Comm                                  communicator,
+      TimerOutput                                    &timer)
+    {
+      auto reacting = std::make_unique<CutCellDiffusion>(
+        d,
+        [&d](const unsigned int id) { return d.permeability(id); },
+        DiffusionBoundary::alveolar_surface,
+        communicator,
+        timer,
+        geometry.period());
+      // The mesh resolves the membranes already (the first solve's).
+      reacting->refine_ridges(false);
+      reacting->share_membrane_distance(setup.distance);
+      reacting->react_inside_cells(d.cytoplasm_permeability(), rate);
+      reacting->setup(*setup.mesh, surfaces, mapping);
+      reacting->assemble();
+      reacting->solve();
+      return reacting;
+    }
   } // namespace
 
   void
@@ -305,6 +341,44 @@ namespace rbc_ifem
                 timer);
   }
 
+  namespace
+  {
+    /// The membrane sink's part of an Uptake: DM, and the mesh and the
+    /// solve it took.
+    Uptake
+    sink_uptake(const UptakeSetup         &setup,
+                const DiffusionParameters &d,
+                const MPI_Comm             communicator)
+    {
+      const parallel::TriangulationBase<3> &mesh      = *setup.mesh;
+      const DiffusionSolver                &diffusion = *setup.diffusion;
+      Uptake                                uptake;
+      uptake.dm_total = diffusion.dm_total();
+      for (const double flow : diffusion.membrane_flows())
+        uptake.dm_cells.push_back(flow / d.alveolar_pressure);
+      uptake.n_nodes = n_global_vertices(mesh);
+      uptake.n_cells = mesh.n_global_active_cells();
+      uptake.n_cells_largest_rank =
+        Utilities::MPI::max(mesh.n_active_cells(), communicator);
+      uptake.n_dofs     = diffusion.n_dofs();
+      uptake.iterations = diffusion.n_iterations();
+      return uptake;
+    }
+
+    /// Add the DL of @p reacting to @p uptake.
+    void
+    add_dl(Uptake                    &uptake,
+           const DiffusionSolver     &reacting,
+           const DiffusionParameters &d)
+    {
+      uptake.dl_total      = reacting.dm_total();
+      uptake.dl_iterations = reacting.n_iterations();
+      uptake.dl_cells.clear();
+      for (const double flow : reacting.membrane_flows())
+        uptake.dl_cells.push_back(flow / d.alveolar_pressure);
+    }
+  } // namespace
+
   Uptake
   solve_uptake(const GeometryParameters                       &geometry,
                const MeshParameters                           &mesh_parameters,
@@ -316,8 +390,8 @@ namespace rbc_ifem
                TimerOutput                                    &timer,
                const std::function<void(const DiffusionSolver &)> &write_fields)
   {
-    Timer                                 clock;
-    const UptakeSetup                     setup(geometry,
+    Timer             clock;
+    const UptakeSetup setup(geometry,
                             mesh_parameters,
                             d,
                             surfaces,
@@ -325,33 +399,87 @@ namespace rbc_ifem
                             band_refinements,
                             communicator,
                             timer);
-    const parallel::TriangulationBase<3> &mesh      = *setup.mesh;
-    DiffusionSolver                      &diffusion = *setup.diffusion;
-    diffusion.assemble();
-    diffusion.solve();
-    if (write_fields)
-      write_fields(diffusion);
-
-    Uptake uptake;
-    uptake.dm_total = diffusion.dm_total();
-    for (const double flow : diffusion.membrane_flows())
-      uptake.dm_cells.push_back(flow / d.alveolar_pressure);
-    uptake.n_nodes = n_global_vertices(mesh);
-    uptake.n_cells = mesh.n_global_active_cells();
-    uptake.n_cells_largest_rank =
-      Utilities::MPI::max(mesh.n_active_cells(), communicator);
-    uptake.n_dofs     = diffusion.n_dofs();
-    uptake.iterations = diffusion.n_iterations();
-    uptake.seconds    = clock.wall_time();
+    setup.diffusion->assemble();
+    setup.diffusion->solve();
+    Uptake uptake = sink_uptake(setup, d, communicator);
+    if (d.uptake == CellUptake::reaction)
+      {
+        const std::unique_ptr<DiffusionSolver> reacting =
+          solve_with_reaction(setup,
+                              geometry,
+                              d,
+                              surfaces,
+                              mapping,
+                              d.reaction_rate(),
+                              communicator,
+                              timer);
+        add_dl(uptake, *reacting, d);
+        if (write_fields)
+          write_fields(*reacting);
+      }
+    else if (write_fields)
+      write_fields(*setup.diffusion);
+    uptake.seconds = clock.wall_time();
     return uptake;
   }
 
+  std::vector<Uptake>
+  solve_uptake_for_rates(
+    const GeometryParameters                       &geometry,
+    const MeshParameters                           &mesh_parameters,
+    const DiffusionParameters                      &sink_parameters,
+    const std::vector<const Triangulation<2, 3> *> &surfaces,
+    const MappingQ<2, 3>                           &mapping,
+    const unsigned int                              band_refinements,
+    const std::vector<double>                      &rates,
+    const MPI_Comm                                  communicator,
+    TimerOutput                                    &timer)
+  {
+    if (sink_parameters.method != DiffusionMethod::cut_cell)
+      throw InputError("Diffusion/Method",
+                       "Lagrange multiplier",
+                       "DL needs the cell interiors in the mesh: cut cell.");
+    // The mesh the reaction needs (CutCellDiffusion::separate_insides()).
+    DiffusionParameters d = sink_parameters;
+    d.uptake              = CellUptake::reaction;
+    Timer             clock;
+    const UptakeSetup setup(geometry,
+                            mesh_parameters,
+                            d,
+                            surfaces,
+                            mapping,
+                            band_refinements,
+                            communicator,
+                            timer);
+    setup.diffusion->assemble();
+    setup.diffusion->solve();
+    const Uptake        sink = sink_uptake(setup, d, communicator);
+    std::vector<Uptake> uptakes;
+    for (const double rate : rates)
+      {
+        clock.restart();
+        add_dl(
+          uptakes.emplace_back(sink),
+          *solve_with_reaction(
+            setup, geometry, d, surfaces, mapping, rate, communicator, timer),
+          d);
+        uptakes.back().seconds = clock.wall_time();
+      }
+    return uptakes;
+  }
+
   std::string
-  dm_header(const unsigned int n_cells)
+  dm_header(const unsigned int n_cells, const bool reaction)
   {
     std::string header = "time,dm_total";
     for (unsigned int c = 0; c < n_cells; ++c)
       header += ",dm_cell_" + std::to_string(c);
+    if (reaction)
+      {
+        header += ",dl_total";
+        for (unsigned int c = 0; c < n_cells; ++c)
+          header += ",dl_cell_" + std::to_string(c);
+      }
     return header;
   }
 
@@ -362,6 +490,12 @@ namespace rbc_ifem
     row << time << uptake.dm_total;
     for (const double dm : uptake.dm_cells)
       row << dm;
+    if (!uptake.dl_cells.empty())
+      {
+        row << uptake.dl_total;
+        for (const double dl : uptake.dl_cells)
+          row << dl;
+      }
     return row.str();
   }
 

@@ -34,7 +34,8 @@ namespace rbc_ifem
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
       {
         cells->membranes.table().write(directory + "/cells.csv");
-        CsvTable dm(dm_header(uptake.dm_cells.size()));
+        CsvTable dm(
+          dm_header(uptake.dm_cells.size(), !uptake.dl_cells.empty()));
         dm.add_row(dm_row(0., uptake));
         dm.write(directory + "/dm.csv");
       }

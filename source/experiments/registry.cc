@@ -4,6 +4,7 @@
 #include <rbc_ifem/base/parameter_tools.h>
 #include <rbc_ifem/experiments/cell_flow_experiment.h>
 #include <rbc_ifem/experiments/diffusion_experiment.h>
+#include <rbc_ifem/experiments/finite_uptake_experiment.h>
 #include <rbc_ifem/experiments/flow_experiment.h>
 #include <rbc_ifem/experiments/flowing_layouts_experiment.h>
 #include <rbc_ifem/experiments/geometry_experiment.h>
@@ -102,6 +103,12 @@ namespace rbc_ifem
         "layouts",
         "DM for every kind and number of cells of subsection Layout study "
         "(layouts.csv)."),
+      entry_with<FiniteUptakeExperiment, FiniteUptakeParameters>(
+        "finite uptake",
+        "DM and DL, with CO bound inside the cells at the rates θ_CO of "
+        "subsection Finite uptake, for every layout of subsection Layout "
+        "study, beside Roughton and Forster's lumped estimate "
+        "(uptake.csv)."),
       entry_with<MeshConvergenceExperiment, MeshConvergenceParameters>(
         "mesh convergence",
         "DM of the layout on successively finer meshes (convergence.csv)."),

@@ -38,7 +38,10 @@ namespace rbc_ifem
     pcout << "  " << what << ": " << uptake.n_dofs << " DoFs, "
           << uptake.iterations << " solver iterations, " << std::setprecision(4)
           << uptake.seconds << " s; DM " << std::setprecision(6)
-          << uptake.dm_total << " µm³/(s Torr)" << std::endl
+          << uptake.dm_total << " µm³/(s Torr)";
+    if (!uptake.dl_cells.empty())
+      pcout << ", DL " << uptake.dl_total << " µm³/(s Torr)";
+    pcout << std::endl
           << "    diffusion mesh: " << uptake.n_cells << " cells, "
           << uptake.n_cells_largest_rank << " on the largest rank" << std::endl;
   }

@@ -169,7 +169,9 @@ namespace rbc_ifem
       "time,cell,x,y,z,area,volume,axial_length,max_radius,deformation_index,"
       "frame_x,volume_change,area_change,taylor_deformation,inclination,"
       "min_gap,wall_gap");
-    record.dm.set_header(dm_header(cells.size()));
+    record.dm.set_header(
+      dm_header(cells.size(),
+                parameters.diffusion.uptake == CellUptake::reaction));
     record.cell_files.resize(cells.size());
   }
 

@@ -117,7 +117,7 @@ namespace rbc_ifem
      * The flow through boundary @p boundary: Σ over its DoFs j of
      * a(P, φ_j) = ∫ αD ∇P · ∇φ_j, the residual the Dirichlet values hold
      * up. @p P must have ghost values; @p dof_handler may be an hp one
-     * (cells without DoFs are skipped).
+     * (cells without DoFs are skipped), and P its first component.
      */
     static double
     flow_through_boundary(
@@ -129,9 +129,11 @@ namespace rbc_ifem
       const MPI_Comm                             communicator);
 
     /**
-     * The constraints of P on @p dof_handler (an hp one too): hanging nodes,
-     * P = @p pressure on boundary @p pressure_boundary, and with a
-     * @p period P periodic between the end faces.
+     * The constraints of P on @p dof_handler (an hp one too, P its first
+     * component): hanging nodes, the DoFs @p zero_dofs held at zero (those
+     * a hanging node does not already constrain), P = @p pressure on
+     * boundary @p pressure_boundary, and with a @p period P periodic between
+     * the end faces.
      */
     static void
     make_pressure_constraints(const DoFHandler<3>         &dof_handler,
@@ -139,7 +141,8 @@ namespace rbc_ifem
                               const types::boundary_id     pressure_boundary,
                               const double                 pressure,
                               const std::optional<double> &period,
-                              AffineConstraints<double>   &constraints);
+                              AffineConstraints<double>   &constraints,
+                              const IndexSet              &zero_dofs = {});
 
     /**
      * Write the P field of @p data_out (patches built) as NAME_CCCC.pvtu and

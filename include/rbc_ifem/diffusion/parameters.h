@@ -1,6 +1,8 @@
 #ifndef rbc_ifem_diffusion_parameters_h
 #define rbc_ifem_diffusion_parameters_h
 
+#include <rbc_ifem/base/parameter_tools.h>
+
 #include <deal.II/base/parameter_handler.h>
 
 namespace rbc_ifem
@@ -22,6 +24,31 @@ namespace rbc_ifem
     cut_cell             ///< CutCellDiffusion
   };
 
+  /// What happens to CO at the membranes (Diffusion/Uptake).
+  enum class CellUptake
+  {
+    membrane_sink, ///< P = 0 on the membranes: DM (the paper's model)
+    reaction       ///< CO bound inside the cells at the rate θ: DL beside DM
+  };
+
+  /**
+   * Where θ_CO comes from (Diffusion/Theta model): Diffusion/Theta, or
+   * 1/θ = a + b PO₂ with a and b as the ATS/ERS standard (Zavorsky et al.,
+   * Eur. Respir. J. 49 (2017) 1600962, its table of θ equations) lists them
+   * for blood of 14.6 g/dL hemoglobin.
+   */
+  enum class ThetaModel
+  {
+    given,                 ///< Diffusion/Theta
+    roughton_forster_1957, ///< 1/θ = 1.0 + 0.0058 PO₂ (pH 8.0)
+    forster_1987,          ///< 1/θ = 1.30 + 0.0041 PO₂ (pH 7.4)
+    guenard_2016           ///< 1/θ = 1.16 + 0.0062 PO₂ (the recommended one)
+  };
+
+  /// The names Diffusion/Theta model spells the ThetaModel values with.
+  const SelectionNames<ThetaModel> &
+  theta_model_names();
+
   struct DiffusionParameters
   {
     DiffusionMethod method             = DiffusionMethod::lagrange_multiplier;
@@ -38,6 +65,31 @@ namespace rbc_ifem
     double          ghost_penalty      = 0.01;     ///< dimensionless
     double          linear_tolerance   = 1e-8;     ///< relative, FGMRES
     unsigned int    max_linear_iterations = 1000;
+    CellUptake      uptake                = CellUptake::membrane_sink;
+    double          cytoplasm_diffusivity = 7.0e2;    ///< D [µm²/s]
+    double          cytoplasm_solubility  = 2.363e-5; ///< α [Torr⁻¹]
+    ThetaModel      theta_model           = ThetaModel::guenard_2016;
+    /// θ_CO [mL CO min⁻¹ Torr⁻¹ per mL of blood] if theta_model is given.
+    double theta           = 1.22;
+    double oxygen_pressure = 100.; ///< PO₂ in the cells [Torr]
+    /// Volume fraction of cells in the blood θ refers to.
+    double hematocrit = 0.44;
+
+    /// θ_CO of theta_model [mL CO min⁻¹ Torr⁻¹ per mL of blood].
+    double
+    theta_blood() const;
+
+    /**
+     * The rate k at which the cytoplasm binds CO, k P per unit volume of
+     * cell [µm³ of CO per µm³ and s, k in s⁻¹ Torr⁻¹]: θ per mL of cells
+     * (θ / hematocrit) per second.
+     */
+    double
+    reaction_rate() const;
+
+    /// α D of the cytoplasm [µm²/(s Torr)].
+    double
+    cytoplasm_permeability() const;
 
     /// αD of the material with this id (Material::plasma, ...) [µm²/(s Torr)].
     double
@@ -45,7 +97,11 @@ namespace rbc_ifem
 
     void
     add_parameters(ParameterHandler &prm);
-    /// Throws InputError unless every coefficient and tolerance is > 0.
+    /// The entries of the reaction inside the cells (Uptake and after).
+    void
+    add_reaction_parameters(ParameterHandler &prm);
+    /// Throws InputError unless every coefficient and tolerance is > 0, the
+    /// hematocrit is in (0, 1] and the reaction has cut cells.
     void
     validate() const;
   };

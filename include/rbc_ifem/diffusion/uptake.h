@@ -27,6 +27,11 @@ namespace rbc_ifem
   {
     double              dm_total = 0.; ///< [µm³ s⁻¹ Torr⁻¹]
     std::vector<double> dm_cells;      ///< [µm³ s⁻¹ Torr⁻¹]
+    /// With Diffusion/Uptake = reaction: DL, the CO bound inside the cells
+    /// per Torr of P_A [µm³ s⁻¹ Torr⁻¹]; empty dl_cells otherwise.
+    double              dl_total = 0.;
+    std::vector<double> dl_cells;
+    unsigned int        dl_iterations = 0; ///< of the reaction's solve
     unsigned int n_nodes = 0; ///< vertices of the volume mesh (all ranks')
     unsigned int n_cells = 0; ///< cells of the volume mesh (all ranks')
     /// Cells of the volume mesh that the rank holding the most holds (its
@@ -62,6 +67,9 @@ namespace rbc_ifem
    * cut cells (no rank but the first ever holds all of it), shared for the
    * multiplier; then
    * @p write_fields, if given, writes what the caller wants of the solve.
+   * With Diffusion/Uptake = reaction a second solve on the same mesh, with
+   * the reaction inside the cells (CutCellDiffusion::react_inside_cells()),
+   * gives DL, and it is the one @p write_fields is given.
    * Throws SolverFailure if the solve fails.
    */
   Uptake
@@ -76,9 +84,29 @@ namespace rbc_ifem
     TimerOutput                                        &timer,
     const std::function<void(const DiffusionSolver &)> &write_fields = {});
 
+  /**
+   * What solve_uptake() gives with Diffusion/Uptake = reaction, for each
+   * binding rate k of @p rates [s⁻¹ Torr⁻¹, DiffusionParameters::
+   * reaction_rate()] in turn, on one uptake mesh: the mesh, the distance to
+   * the membranes and DM are computed once. Element i has DL for rates[i].
+   * Needs Diffusion/Method = cut cell.
+   */
+  std::vector<Uptake>
+  solve_uptake_for_rates(
+    const GeometryParameters                       &geometry,
+    const MeshParameters                           &mesh,
+    const DiffusionParameters                      &diffusion,
+    const std::vector<const Triangulation<2, 3> *> &surfaces,
+    const MappingQ<2, 3>                           &mapping,
+    const unsigned int                              band_refinements,
+    const std::vector<double>                      &rates,
+    const MPI_Comm                                  communicator,
+    TimerOutput                                    &timer);
+
   /// The header of dm.csv for @p n_cells cells: time,dm_total,dm_cell_0,...
+  /// and, with @p reaction, dl_total,dl_cell_0,...
   std::string
-  dm_header(const unsigned int n_cells);
+  dm_header(const unsigned int n_cells, const bool reaction);
 
   /// The dm.csv row of @p uptake at @p time [s].
   std::string

@@ -5,9 +5,10 @@
 # doc/physiology.md) at θ_CO of Guénard et al. 2016 at PO₂ = 100 Torr, on
 # the mesh of prm/finite_uptake.prm (Surface refinements 4, band refinements
 # 1, cut cells Q2), with two tables:
-# 1. mesh convergence: one cell and seven uniform cells at band refinements
-#    1, 2 and 3: DM, DL, DL's change from the finest, seconds of the whole
-#    experiment;
+# 1. mesh convergence: one cell at band refinements 1, 2 and 3, seven
+#    uniform cells at 1 and 2 (3 would need about 20 GB): DM, DL, DL's
+#    difference from the finest, seconds of the whole experiment and the
+#    peak memory of the largest rank;
 # 2. the cytoplasm's diffusivity (one cell): DL at 1/4, 2/7 (the default,
 #    700 µm²/s), 1 and 10 times the plasma's 2453 µm²/s, beside the lumped
 #    1/DM + 1/(θ V_c), which assumes the cell's inside well mixed.
@@ -34,19 +35,20 @@ run() {
     'NR == 2 { printf "%.6f %.6f %.6f %.1f\n", $8, $9, $10, s }' out/uptake.csv
 }
 
-echo "| cells | band refinements | DM | DL | DL / DL(band 3) - 1 | seconds |"
-echo "|---|---|---|---|---|---|"
+echo "| cells | band refinements | DM | DL | DL / DL(finest) - 1 | seconds | peak memory [MB] |"
+echo "|---|---|---|---|---|---|---|"
 for n in 1 7; do
-  declare -A dl=()
+  bands="1 2 3"
+  [ "$n" = 1 ] || bands="1 2"
   rows=()
-  for band in 1 2 3; do
+  for band in $bands; do
     read -r dm d lumped seconds <<<"$(run "$n" "$band" 700)"
-    dl[$band]=$d
-    rows+=("$n $band $dm $d $seconds")
+    finest=$d
+    rows+=("$n $band $dm $d $seconds $(sed -n 's/.*peak memory: \([0-9.e+]*\) MB.*/\1/p' log.txt)")
   done
   for row in "${rows[@]}"; do
-    read -r cells band dm d seconds <<<"$row"
-    echo "| $cells | $band | $dm | $d | $(awk -v a="$d" -v b="${dl[3]}" 'BEGIN { printf "%+.3f%%", 100 * (a / b - 1) }') | $seconds |"
+    read -r cells band dm d seconds memory <<<"$row"
+    echo "| $cells | $band | $dm | $d | $(awk -v a="$d" -v b="$finest" 'BEGIN { printf "%+.3f%%", 100 * (a / b - 1) }') | $seconds | $memory |"
   done
 done
 

@@ -2,8 +2,8 @@
 """Plot uptake.csv of an `Experiment = finite uptake` run: DL against θ_CO,
 one panel per number of cells, a line per layout; Roughton and Forster's
 lumped estimate 1/DL = 1/DM + 1/(θ V_c) dashed, DM (the membrane sink, θ → ∞)
-dotted, the θ of the cited formulas at PO₂ 100 Torr marked, and the paper's
-one-cell DM of 1.03-1.18 µm³ s⁻¹ Torr⁻¹ shaded.
+dotted, the range of θ the cited formulas give at PO₂ 100 Torr shaded grey,
+and the paper's one-cell DM of 1.03-1.18 µm³ s⁻¹ Torr⁻¹ shaded red.
 
     /usr/bin/python3 doc/plot_finite_uptake.py output/finite_uptake/uptake.csv doc/figures/finite_uptake.png
 
@@ -31,23 +31,21 @@ def main(path, picture):
             curve = sorted((r for r in mine if r["layout"] == layout),
                            key=lambda r: r["theta"])
             theta = [r["theta"] for r in curve]
-            label = layout if n > 1 else "one cell"
             colour = COLOUR.get(layout, "black") if n > 1 else "black"
             axes.plot(theta, [r["dl_total"] for r in curve], "o-", color=colour,
-                      label=f"DL, {label}")
+                      label=f"DL, {layout}" if n > 1 else "DL")
             axes.plot(theta, [r["roughton_forster_dl"] for r in curve], "--",
-                      color=colour, label=f"lumped 1/DM + 1/(θV_c), {label}")
-            axes.axhline(curve[0]["dm_total"], color=colour, ls=":",
-                         label=f"DM (θ → ∞), {label}")
-        for r in mine:
-            if r.get("oxygen_pressure") == 100 and r["layout"] == mine[0]["layout"]:
-                axes.axvline(r["theta"], color="grey", lw=0.6)
-                axes.annotate(r["theta_source"], (r["theta"], 0.02), rotation=90,
-                              xycoords=("data", "axes fraction"), fontsize=7,
-                              color="grey", ha="right", va="bottom")
+                      color=colour)
+            axes.axhline(curve[0]["dm_total"], color=colour, ls=":")
+        axes.plot([], [], "k--", label="lumped: 1/DM + 1/(θ V_c)")
+        axes.plot([], [], "k:", label="DM (the membrane sink, θ → ∞)")
+        cited = [r["theta"] for r in mine if r.get("oxygen_pressure") == 100]
+        if cited:
+            axes.axvspan(min(cited), max(cited), color="grey", alpha=0.25,
+                         label="θ of the cited formulas, PO₂ 100 Torr")
         if n == 1:
             axes.axhspan(*PAPER_ONE_CELL, color="tab:red", alpha=0.15,
-                         label="the paper's one-cell DM")
+                         label="the paper's one-cell DM, 1.03-1.18")
         axes.set_xscale("log")
         axes.set_xlabel("θ_CO [mL CO min⁻¹ Torr⁻¹ per mL of blood]")
         axes.set_ylabel("DL [µm³ s⁻¹ Torr⁻¹]")

@@ -379,6 +379,63 @@ namespace rbc_ifem
     }
   } // namespace
 
+  namespace
+  {
+    /**
+     * What solve_uptake() and solve_uptake_for_rates() share: the sink's
+     * solve on the uptake mesh, then with @p d's reaction one solve per
+     * rate of @p rates, each Uptake's seconds the wall time since the one
+     * before (the first's since the start); @p write_fields is given the
+     * last solve.
+     */
+    std::vector<Uptake>
+    solve_sink_and_rates(
+      const GeometryParameters                           &geometry,
+      const MeshParameters                               &mesh_parameters,
+      const DiffusionParameters                          &d,
+      const std::vector<const Triangulation<2, 3> *>     &surfaces,
+      const MappingQ<2, 3>                               &mapping,
+      const unsigned int                                  band_refinements,
+      const std::vector<double>                          &rates,
+      const MPI_Comm                                      communicator,
+      TimerOutput                                        &timer,
+      const std::function<void(const DiffusionSolver &)> &write_fields)
+    {
+      Timer             clock;
+      const UptakeSetup setup(geometry,
+                              mesh_parameters,
+                              d,
+                              surfaces,
+                              mapping,
+                              band_refinements,
+                              communicator,
+                              timer);
+      setup.diffusion->assemble();
+      setup.diffusion->solve();
+      const Uptake sink = sink_uptake(setup, d, communicator);
+      if (rates.empty())
+        {
+          if (write_fields)
+            write_fields(*setup.diffusion);
+          std::vector<Uptake> uptakes{sink};
+          uptakes.back().seconds = clock.wall_time();
+          return uptakes;
+        }
+      std::vector<Uptake> uptakes;
+      for (const double rate : rates)
+        {
+          const std::unique_ptr<DiffusionSolver> reacting = solve_with_reaction(
+            setup, geometry, d, surfaces, mapping, rate, communicator, timer);
+          add_dl(uptakes.emplace_back(sink), *reacting, d);
+          if (write_fields && uptakes.size() == rates.size())
+            write_fields(*reacting);
+          uptakes.back().seconds = clock.wall_time();
+          clock.restart();
+        }
+      return uptakes;
+    }
+  } // namespace
+
   Uptake
   solve_uptake(const GeometryParameters                       &geometry,
                const MeshParameters                           &mesh_parameters,
@@ -390,37 +447,19 @@ namespace rbc_ifem
                TimerOutput                                    &timer,
                const std::function<void(const DiffusionSolver &)> &write_fields)
   {
-    Timer             clock;
-    const UptakeSetup setup(geometry,
-                            mesh_parameters,
-                            d,
-                            surfaces,
-                            mapping,
-                            band_refinements,
-                            communicator,
-                            timer);
-    setup.diffusion->assemble();
-    setup.diffusion->solve();
-    Uptake uptake = sink_uptake(setup, d, communicator);
-    if (d.uptake == CellUptake::reaction)
-      {
-        const std::unique_ptr<DiffusionSolver> reacting =
-          solve_with_reaction(setup,
-                              geometry,
-                              d,
-                              surfaces,
-                              mapping,
-                              d.reaction_rate(),
-                              communicator,
-                              timer);
-        add_dl(uptake, *reacting, d);
-        if (write_fields)
-          write_fields(*reacting);
-      }
-    else if (write_fields)
-      write_fields(*setup.diffusion);
-    uptake.seconds = clock.wall_time();
-    return uptake;
+    return solve_sink_and_rates(geometry,
+                                mesh_parameters,
+                                d,
+                                surfaces,
+                                mapping,
+                                band_refinements,
+                                d.uptake == CellUptake::reaction ?
+                                  std::vector<double>{d.reaction_rate()} :
+                                  std::vector<double>{},
+                                communicator,
+                                timer,
+                                write_fields)
+      .front();
   }
 
   std::vector<Uptake>
@@ -442,30 +481,16 @@ namespace rbc_ifem
     // The mesh the reaction needs (CutCellDiffusion::separate_insides()).
     DiffusionParameters d = sink_parameters;
     d.uptake              = CellUptake::reaction;
-    Timer             clock;
-    const UptakeSetup setup(geometry,
-                            mesh_parameters,
-                            d,
-                            surfaces,
-                            mapping,
-                            band_refinements,
-                            communicator,
-                            timer);
-    setup.diffusion->assemble();
-    setup.diffusion->solve();
-    const Uptake        sink = sink_uptake(setup, d, communicator);
-    std::vector<Uptake> uptakes;
-    for (const double rate : rates)
-      {
-        clock.restart();
-        add_dl(
-          uptakes.emplace_back(sink),
-          *solve_with_reaction(
-            setup, geometry, d, surfaces, mapping, rate, communicator, timer),
-          d);
-        uptakes.back().seconds = clock.wall_time();
-      }
-    return uptakes;
+    return solve_sink_and_rates(geometry,
+                                mesh_parameters,
+                                d,
+                                surfaces,
+                                mapping,
+                                band_refinements,
+                                rates,
+                                communicator,
+                                timer,
+                                {});
   }
 
   std::string

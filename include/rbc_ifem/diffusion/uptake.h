@@ -88,8 +88,10 @@ namespace rbc_ifem
    * What solve_uptake() gives with Diffusion/Uptake = reaction, for each
    * binding rate k of @p rates [s⁻¹ Torr⁻¹, DiffusionParameters::
    * reaction_rate()] in turn, on one uptake mesh: the mesh, the distance to
-   * the membranes and DM are computed once. Element i has DL for rates[i].
-   * Needs Diffusion/Method = cut cell.
+   * the membranes and DM are computed once. Element i has DL for rates[i]
+   * (@p rates not empty), and as its seconds the wall time since element
+   * i − 1 (element 0: since the start, the mesh and DM included). Needs
+   * Diffusion/Method = cut cell.
    */
   std::vector<Uptake>
   solve_uptake_for_rates(

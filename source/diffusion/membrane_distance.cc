@@ -26,6 +26,20 @@ namespace rbc_ifem
     /// Nearest samples whose patches are tried for each query.
     constexpr unsigned int n_candidates = 8;
 
+    /// The signed solid angle of the triangle a, b, c (its vertices seen
+    /// from the viewpoint), positive when its normal (b - a) × (c - a)
+    /// points away from the viewpoint.
+    double
+    solid_angle(const Tensor<1, 3> &a,
+                const Tensor<1, 3> &b,
+                const Tensor<1, 3> &c)
+    {
+      const double la = a.norm(), lb = b.norm(), lc = c.norm();
+      return 2. * std::atan2(a * cross_product_3d(b, c),
+                             la * lb * lc + (a * b) * lc + (a * c) * lb +
+                               (b * c) * la);
+    }
+
     /// The largest mapping degree the fixed-size evaluation supports.
     constexpr unsigned int max_degree = 4;
   } // namespace
@@ -171,6 +185,31 @@ namespace rbc_ifem
     return result;
   }
 
+  double
+  MembraneDistance::winding_number(const unsigned int membrane,
+                                   const Point<3>    &x) const
+  {
+    // The solid angle that the membrane's surface, as the flat triangles
+    // between the nodes of its patches, subtends at x over 4π (Van Oosterom
+    // & Strackee 1983, IEEE TBME 30:125): 1 inside, 0 outside, and robust
+    // to folds the closest point cannot see past.
+    const unsigned int n     = nodes_1d.size();
+    double             angle = 0.;
+    for (const Patch &patch : patches)
+      if (patch.membrane == membrane)
+        for (unsigned int j = 0; j + 1 < n; ++j)
+          for (unsigned int i = 0; i + 1 < n; ++i)
+            {
+              const Tensor<1, 3> a = patch.nodes[j * n + i] - x;
+              const Tensor<1, 3> b = patch.nodes[j * n + i + 1] - x;
+              const Tensor<1, 3> c = patch.nodes[(j + 1) * n + i + 1] - x;
+              const Tensor<1, 3> d = patch.nodes[(j + 1) * n + i] - x;
+              angle += patch.orientation *
+                       (solid_angle(a, b, c) + solid_angle(a, c, d));
+            }
+    return angle / (4. * numbers::PI);
+  }
+
   std::size_t
   MembraneDistance::PointHash::operator()(const Point<3> &x) const
   {
@@ -178,6 +217,39 @@ namespace rbc_ifem
     for (unsigned int d = 0; d < 3; ++d)
       boost::hash_combine(seed, std::hash<double>()(x[d]));
     return seed;
+  }
+
+  void
+  MembraneDistance::try_patches_near(const Point<3>            &around,
+                                     const Point<3>            &x,
+                                     std::vector<unsigned int> &tried,
+                                     Candidate                 &best) const
+  {
+    constexpr double         tie = 1e-8; // [µm], far below any mesh size
+    std::vector<std::size_t> nearest;
+    tree->query(boost::geometry::index::nearest(around, n_candidates),
+                std::back_inserter(nearest));
+    for (const std::size_t k : nearest)
+      {
+        if (std::find(tried.begin(), tried.end(), sample_patch[k]) !=
+            tried.end())
+          continue;
+        tried.push_back(sample_patch[k]);
+        Candidate candidate;
+        candidate.point = project(patches[sample_patch[k]], x, sample_xi[k]);
+        candidate.x     = x;
+        const double distance = std::abs(candidate.point.signed_distance);
+        candidate.alignment =
+          distance > 0. ?
+            std::abs((x - candidate.point.point) * candidate.point.normal) /
+              distance :
+            1.;
+        const double best_distance = std::abs(best.point.signed_distance);
+        if (distance < best_distance - tie ||
+            (distance <= best_distance + tie &&
+             candidate.alignment > best.alignment))
+          best = candidate;
+      }
   }
 
   MembraneDistance::ClosestPoint
@@ -192,29 +264,35 @@ namespace rbc_ifem
       for (const double shift : {-*period, *period})
         images.push_back(x + Tensor<1, 3>({shift, 0., 0.}));
 
-    ClosestPoint best;
-    best.signed_distance = std::numeric_limits<double>::infinity();
-    std::vector<std::size_t> nearest;
-    for (const Point<3> &image : images)
+    Candidate best;
+    best.point.signed_distance = std::numeric_limits<double>::infinity();
+    std::vector<std::vector<unsigned int>> tried(images.size());
+    for (unsigned int i = 0; i < images.size(); ++i)
+      try_patches_near(images[i], images[i], tried[i], best);
+
+    // The side of x: from the normal at the closest point F, which is exact
+    // where F lies inside a patch (x - F is then along the normal). Where F
+    // lies on an edge or a corner that patches share, each of them finds it
+    // with its own normal, and x - F lies in the cone of those normals: on a
+    // sharp fold (a parachute's rim at high capillary number, seen from
+    // afar) one of them can put x on the wrong side. So every patch around
+    // such an F is tried, and of equally close answers the one whose normal
+    // is most nearly along x - F gives the side (right at any edge: the two
+    // normals' dot products with x - F sum to a non-negative number). Where
+    // even that normal is nearly tangent to x - F, the winding number
+    // decides.
+    const Point<2> &xi = best.point.reference;
+    if (std::min({xi[0], xi[1], 1. - xi[0], 1. - xi[1]}) == 0.)
       {
-        nearest.clear();
-        tree->query(boost::geometry::index::nearest(image, n_candidates),
-                    std::back_inserter(nearest));
-        std::vector<unsigned int> tried;
-        for (const std::size_t k : nearest)
-          {
-            if (std::find(tried.begin(), tried.end(), sample_patch[k]) !=
-                tried.end())
-              continue;
-            tried.push_back(sample_patch[k]);
-            const ClosestPoint candidate =
-              project(patches[sample_patch[k]], image, sample_xi[k]);
-            if (std::abs(candidate.signed_distance) <
-                std::abs(best.signed_distance))
-              best = candidate;
-          }
+        const unsigned int i =
+          std::find(images.begin(), images.end(), best.x) - images.begin();
+        try_patches_near(best.point.point, best.x, tried[i], best);
       }
-    answers.emplace(x, best);
-    return best;
+    if (best.alignment < 0.5)
+      best.point.signed_distance =
+        (winding_number(best.point.membrane, best.x) > 0.5 ? -1. : 1.) *
+        std::abs(best.point.signed_distance);
+    answers.emplace(x, best.point);
+    return best.point;
   }
 } // namespace rbc_ifem

@@ -82,6 +82,31 @@ namespace rbc_ifem
       double orientation;          ///< +1 or -1: ∂₀F × ∂₁F outward?
     };
 
+    /// A patch's answer to a query from the point (or periodic image) x.
+    struct Candidate
+    {
+      ClosestPoint point;
+      Point<3>     x;
+      /// |(x - F) · n| / |x - F|: 1 where x - F is along the normal.
+      double alignment = 0.;
+    };
+
+    /**
+     * Project @p x on the patches of the samples nearest to @p around that
+     * are not in @p tried yet (and add them to it), and keep in @p best the
+     * closest answer; of answers equally close (on an edge or a corner that
+     * patches share), the one best aligned with its normal.
+     */
+    void
+    try_patches_near(const Point<3>            &around,
+                     const Point<3>            &x,
+                     std::vector<unsigned int> &tried,
+                     Candidate                 &best) const;
+
+    /// The winding number of @p membrane around @p x: 1 inside, 0 outside.
+    double
+    winding_number(unsigned int membrane, const Point<3> &x) const;
+
     /// F(ξ) and its two tangents on @p patch.
     void
     evaluate(const Patch    &patch,

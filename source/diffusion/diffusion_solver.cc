@@ -15,6 +15,7 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 namespace rbc_ifem
@@ -74,7 +75,10 @@ namespace rbc_ifem
      * -flux n on a membrane: the flux vector, pointing into the cell.
      * DataOut gives normals to postprocessors only on faces (DataOutFaces),
      * so they come from an FEValues at the patch points of each membrane
-     * cell.
+     * cell. Those are the (n+1)² points of a uniform grid on the unit cell,
+     * in lexicographic order; taking them from there, rather than inverting
+     * the map at the points DataOut hands over, also works on the cells that
+     * a folded rim distorts, where the inversion fails.
      */
     class FluxVector : public DataPostprocessorVector<3>
     {
@@ -90,20 +94,34 @@ namespace rbc_ifem
         const DataPostprocessorInputs::Scalar<3> &inputs,
         std::vector<Vector<double>>              &computed) const override
       {
-        const auto            cell = inputs.template get_cell<2>();
-        std::vector<Point<2>> unit_points(inputs.evaluation_points.size());
-        mapping.transform_points_real_to_unit_cell(cell,
-                                                   inputs.evaluation_points,
-                                                   unit_points);
+        const auto         cell     = inputs.template get_cell<2>();
+        const unsigned int n_points = inputs.evaluation_points.size();
+        const unsigned int n =
+          std::lround(std::sqrt(static_cast<double>(n_points))) - 1;
+        AssertThrow(n >= 1 && (n + 1) * (n + 1) == n_points,
+                    ExcInternalError());
+        std::vector<Point<2>> unit_points;
+        for (unsigned int j = 0; j <= n; ++j)
+          for (unsigned int i = 0; i <= n; ++i)
+            unit_points.emplace_back(static_cast<double>(i) / n,
+                                     static_cast<double>(j) / n);
         FEValues<2, 3> fe_values(mapping,
                                  fe,
                                  Quadrature<2>(unit_points),
-                                 update_normal_vectors);
+                                 update_normal_vectors |
+                                   update_quadrature_points);
         fe_values.reinit(cell);
-        for (unsigned int q = 0; q < unit_points.size(); ++q)
-          for (unsigned int d = 0; d < 3; ++d)
-            computed[q](d) =
-              -inputs.solution_values[q] * fe_values.normal_vector(q)[d];
+        for (unsigned int q = 0; q < n_points; ++q)
+          {
+            AssertThrow(fe_values.quadrature_point(q).distance(
+                          inputs.evaluation_points[q]) <=
+                          1e-8 * cell->diameter(),
+                        ExcMessage("DataOut's patch points are not the "
+                                   "lexicographic grid FluxVector assumes"));
+            for (unsigned int d = 0; d < 3; ++d)
+              computed[q](d) =
+                -inputs.solution_values[q] * fe_values.normal_vector(q)[d];
+          }
       }
 
     private:

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Usage: compare_run.sh [-r TOLERANCE] [-n RANKS -m MPIEXEC] [-b FILE:COLUMN:LOW:HIGH]...
 #                       [-a FILE:COLUMN:LOW:HIGH]... [-e FILE:PREFIX:TOLERANCE]...
-#                       RBC_IFEM PRM EXPECTED_DIR NUMDIFF
+#                       [-c CHECKPOINT] RBC_IFEM PRM EXPECTED_DIR NUMDIFF
 #
 # Runs an experiment (on RANKS MPI ranks with -n) in an empty directory and
 # compares each file stored in EXPECTED_DIR (and its folders: a run's
@@ -18,6 +18,8 @@
 # Each -e checks that on every row of FILE the columns whose names start
 # with PREFIX agree within the relative TOLERANCE (cells that symmetry makes
 # equal), and prints the largest relative spread.
+# -c copies CHECKPOINT to the output directory's checkpoint.bin before the
+# run, for a PRM that resumes from a stored state (Immersed cells/Resume).
 set -u
 source "$(dirname "$0")/../script_setup.sh"
 tolerance=1e-8
@@ -26,7 +28,8 @@ mpiexec=
 bands=()
 all_rows=()
 equal=()
-while getopts "r:n:m:b:a:e:" option; do
+checkpoint=
+while getopts "r:n:m:b:a:e:c:" option; do
   case $option in
     r) tolerance=$OPTARG ;;
     n) ranks=$OPTARG ;;
@@ -34,6 +37,7 @@ while getopts "r:n:m:b:a:e:" option; do
     b) bands+=("$OPTARG") ;;
     a) all_rows+=("$OPTARG") ;;
     e) equal+=("$OPTARG") ;;
+    c) checkpoint=$(realpath "$OPTARG") ;;
     *) exit 2 ;;
   esac
 done
@@ -45,7 +49,11 @@ numdiff=$4
 
 set_launcher "$ranks" "$mpiexec"
 enter_scratch_directory
-
+directory=$(sed -n 's/^set Output directory *= *//p' "$prm")
+if [ -n "$checkpoint" ]; then
+  mkdir -p "$directory"
+  cp "$checkpoint" "$directory/checkpoint.bin"
+fi
 "${launcher[@]}" "$exe" "$prm" >log.txt 2>&1
 status=$?
 cat log.txt
@@ -63,7 +71,6 @@ select_columns() {
              print line }' "$1" "$2"
 }
 
-directory=$(sed -n 's/^set Output directory *= *//p' "$prm")
 failed=0
 while IFS= read -r name; do
   reference="$expected/$name"

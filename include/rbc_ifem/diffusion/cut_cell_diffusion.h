@@ -265,6 +265,9 @@ namespace rbc_ifem
     assemble_cells();
     void
     assemble_ghost_penalty();
+    /// Hold at zero the DoFs whose rows assembled only round-off.
+    void
+    hold_unsupported_dofs();
     void
     compute_flows();
 

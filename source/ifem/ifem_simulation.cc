@@ -477,23 +477,39 @@ namespace rbc_ifem
     const auto         surfaces  = cells.current_surfaces();
     const auto         mapping   = cells.surface_mapping(surfaces);
     const std::string &directory = parameters.output_directory;
-    const Uptake       uptake =
-      rbc_ifem::solve_uptake(parameters.geometry,
-                             parameters.mesh,
-                             parameters.diffusion,
-                             pointers_to(surfaces),
-                             mapping,
-                             parameters.mesh.diffusion_band_refinements,
-                             communicator,
-                             timer,
-                             [&](const DiffusionSolver &diffusion) {
-                               record.uptake_fields.write(diffusion,
-                                                          directory,
-                                                          record.time,
-                                                          counter,
-                                                          communicator,
-                                                          frame_data());
-                             });
+    Uptake             uptake;
+    try
+      {
+        uptake =
+          rbc_ifem::solve_uptake(parameters.geometry,
+                                 parameters.mesh,
+                                 parameters.diffusion,
+                                 pointers_to(surfaces),
+                                 mapping,
+                                 parameters.mesh.diffusion_band_refinements,
+                                 communicator,
+                                 timer,
+                                 [&](const DiffusionSolver &diffusion) {
+                                   record.uptake_fields.write(diffusion,
+                                                              directory,
+                                                              record.time,
+                                                              counter,
+                                                              communicator,
+                                                              frame_data());
+                                 });
+      }
+    catch (const std::runtime_error &e)
+      {
+        // At the start the cells are the input, and what the solve
+        // refuses (InputError) is bad input; later they are where the flow
+        // took them, and the run stops with its state.
+        if (record.step == 0)
+          throw;
+        stop("the CO uptake solve on the cells' current shapes failed: " +
+               std::string(e.what()),
+             cells.positions(),
+             true);
+      }
     record.dm.add_row(dm_row(record.time, uptake));
     record.dm_history.emplace_back(record.time, uptake.dm_total);
     if (!observers.empty())
@@ -770,7 +786,8 @@ namespace rbc_ifem
 
   void
   IFEMSimulation::stop(const std::string                 &why,
-                       const std::vector<Vector<double>> &last_good)
+                       const std::vector<Vector<double>> &last_good,
+                       const bool                         after_step)
   {
     cells.set_positions(last_good);
     write_tables();
@@ -780,7 +797,7 @@ namespace rbc_ifem
                       record.step,
                       frame_data());
     throw SolverFailure(
-      "step " + std::to_string(record.step + 1) +
+      "step " + std::to_string(record.step + (after_step ? 0 : 1)) +
       ", t = " + std::to_string(record.time) + " s: " + why +
       ". The tables so far and the last good membranes (last_good_cell_*.vtu) "
       "are in " +

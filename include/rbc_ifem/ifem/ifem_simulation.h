@@ -155,9 +155,13 @@ namespace rbc_ifem
     /// Write the tables and a checkpoint, then throw RunInterrupted.
     [[noreturn]] void
     save_and_stop(const int signal) const;
-    /// Write the tables and the last good membranes, then throw.
+    /// Write the tables and the last good membranes, then throw; the
+    /// message names the step in progress, or with @p after_step = true the
+    /// step just done (a failure at its DM instant).
     [[noreturn]] void
-    stop(const std::string &why, const std::vector<Vector<double>> &last_good);
+    stop(const std::string                 &why,
+         const std::vector<Vector<double>> &last_good,
+         const bool                         after_step = false);
 
     const Parameters   parameters;
     const std::string  parameter_file_text;

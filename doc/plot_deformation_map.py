@@ -2,11 +2,12 @@
 """Plot the deformation and confinement map that
 benchmarks/deformation_map.sh writes: the change of DM (solid) and DL
 (dashed) from the cell's starting shape to its shape at the end of the run
-(15 ms; 30 ms where the cell is squeezed into a narrower capillary), against
+(once DM changes by less than 0.1% in 3 ms, at most 60 ms; a run that
+did not settle is circled: its drop is a lower bound), against
 the capillary number μū/G in the 10 µm capillary (a colour per shear
 modulus) and against the capillary's diameter (at two capillary numbers);
 the paper's -13% in grey. Below, the cell's outline in the plane of the
-capillary's axis at the end, at four points of the map, with the wall.
+capillary's axis at the end, at five points of the map, with the wall.
 
     /usr/bin/python3 doc/plot_deformation_map.py output/deformation_map doc/figures/deformation_map.png
 
@@ -23,11 +24,19 @@ plt = plot_style.pyplot()
 PAPER_DROP = -13.0  # An et al. 2022: the parachute's DM against the disc's
 COLOUR = {2.5: "tab:red", 5.5: "tab:blue", 10.0: "tab:green"}
 # (diameter, speed, shear modulus) of the outlines.
-SHAPES = [(10, 500, 5.5), (10, 2000, 2.5), (7, 500, 5.5), (6, 500, 5.5)]
+SHAPES = [(10, 500, 5.5), (10, 2000, 2.5), (8, 2000, 2.5), (7, 500, 5.5), (6, 500, 5.5)]
 
 
 def percent(row, key):
     return 100 * row[key]
+
+
+def circle_unsettled(axes, x, curve, colour):
+    """Circle the DM points of CURVE (at X) whose run had not settled."""
+    unsettled = [(xi, percent(r, "dm_change")) for xi, r in zip(x, curve)
+                 if r.get("steady") != "true"]
+    if unsettled:
+        axes.plot(*zip(*unsettled), "o", ms=13, mfc="none", mec=colour, lw=0)
 
 
 def against_capillary_number(axes, rows):
@@ -40,9 +49,12 @@ def against_capillary_number(axes, rows):
         axes.plot(ca, [percent(r, "dm_change") for r in curve], "o-", color=colour,
                   label=f"G = {g:g} pN/µm")
         axes.plot(ca, [percent(r, "dl_change") for r in curve], "s--", color=colour, mfc="none")
+        circle_unsettled(axes, ca, curve, colour)
     axes.axhline(PAPER_DROP, color="grey", lw=4, alpha=0.4, label="the paper's DM drop")
     axes.plot([], [], "k-", label="DM")
     axes.plot([], [], "k--", label="DL")
+    if any(r.get("steady") != "true" for r in tube):
+        axes.plot([], [], "ko", ms=13, mfc="none", label="not settled by 60 ms")
     axes.set_xscale("log")
     plot_style.plain_log_ticks(axes.xaxis)
     axes.set_xlabel("capillary number μū/G")
@@ -61,13 +73,16 @@ def against_diameter(axes, rows):
         label = f"ū = {u / 1000:g} mm/s, G = {g:g} pN/µm (Ca = {curve[0]['capillary_number']:.2f})"
         axes.plot(d, [percent(r, "dm_change") for r in curve], "o-", color=colour, label=label)
         axes.plot(d, [percent(r, "dl_change") for r in curve], "s--", color=colour, mfc="none")
+        circle_unsettled(axes, d, curve, colour)
     axes.axhline(PAPER_DROP, color="grey", lw=4, alpha=0.4)
     axes.axvline(7.5, color="black", ls=":", lw=1)
     axes.text(7.45, -6, "cell diameter", rotation=90, ha="right", va="center", fontsize=8)
     axes.set_xlabel("capillary diameter [µm]")
     axes.set_ylabel("change at the end [%]")
     axes.set_title("confinement (7.5 µm cell)")
-    axes.legend(loc="upper center")
+    low, high = axes.get_ylim()
+    axes.set_ylim(low - 0.25 * (high - low), high)  # room for the legend
+    axes.legend(loc="lower right")
 
 
 def outline(run):
@@ -120,7 +135,7 @@ def shapes(axes_list, directory, rows):
 
 def main(directory, picture):
     rows = read_table(os.path.join(directory, "deformation_map.csv"))
-    figure = plt.figure(figsize=(10, 7.2), layout="constrained")
+    figure = plt.figure(figsize=(11, 7.2), layout="constrained")
     top, bottom = figure.subfigures(2, 1, height_ratios=[1.5, 1])
     left, right = top.subplots(1, 2)
     against_capillary_number(left, rows)

@@ -796,9 +796,11 @@ namespace rbc_ifem
                       "last_good_cell",
                       record.step,
                       frame_data());
+    const bool full_stop = !why.empty() && why.back() == '.';
     throw SolverFailure(
       "step " + std::to_string(record.step + (after_step ? 0 : 1)) +
-      ", t = " + std::to_string(record.time) + " s: " + why +
+      ", t = " + std::to_string(record.time) +
+      " s: " + why.substr(0, why.size() - (full_stop ? 1 : 0)) +
       ". The tables so far and the last good membranes (last_good_cell_*.vtu) "
       "are in " +
       parameters.output_directory + ".");

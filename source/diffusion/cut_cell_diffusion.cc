@@ -15,10 +15,11 @@
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/hp/mapping_collection.h>
 #include <deal.II/hp/q_collection.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/trilinos_index_access.h>
-#include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/non_matching/fe_values.h>
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
@@ -40,6 +41,14 @@ namespace rbc_ifem
     {
       lagrange = 0, ///< cells that reach into the plasma
       nothing  = 1  ///< cells wholly inside a red cell
+    };
+
+    /// MappingQ, with the placement of a cell's support points public, so
+    /// that a MappingQCache can be filled for some cells only.
+    struct SupportPointsOfMappingQ : public MappingQ<3>
+    {
+      using MappingQ<3>::MappingQ;
+      using MappingQ<3>::compute_mapping_support_points;
     };
 
     /// What every rank of @p communicator has in @p local, in rank order.
@@ -118,7 +127,6 @@ namespace rbc_ifem
     , communicator(communicator)
     , timer(timer)
     , mapping(parameters.degree)
-    , mapping_collection(mapping)
     , cell_quadrature(QGauss<3>(parameters.degree + 1))
     , line_quadrature(QGauss<1>(parameters.degree + 1))
     , level_set_fe(parameters.degree)
@@ -153,6 +161,7 @@ namespace rbc_ifem
     this->mesh             = &mesh;
     this->membranes        = membranes;
     this->membrane_mapping = &membrane_mapping;
+    cache_mapping();
     if (shared_distance)
       distance = shared_distance;
     else
@@ -195,6 +204,22 @@ namespace rbc_ifem
                                 unused);
     }
     setup_matrix();
+  }
+
+  void
+  CutCellDiffusion::cache_mapping()
+  {
+    const SupportPointsOfMappingQ exact(parameters.degree);
+    const unsigned int n_points = Utilities::pow(parameters.degree + 1, 3);
+    mapping.initialize(*mesh, [&](const Triangulation<3>::cell_iterator &cell) {
+      // Nothing here evaluates on a parent or an artificial cell: they keep
+      // a placeholder, and cost nothing.
+      if (cell->is_active() && !cell->is_artificial())
+        return exact.compute_mapping_support_points(cell);
+      return std::vector<Point<3>>(n_points, cell->vertex(0));
+    });
+    // The collection holds a copy, which shares the cache just made.
+    mapping_collection = hp::MappingCollection<3>(mapping);
   }
 
   void
@@ -623,16 +648,8 @@ namespace rbc_ifem
       for (const auto &[dof, weight] : line.entries)
         written_rows.add_index(dof);
     written_rows.compress();
-    TrilinosWrappers::SparsityPattern pattern(owned_dofs,
-                                              owned_dofs,
-                                              written_rows,
-                                              communicator);
-    DoFTools::make_sparsity_pattern(dof_handler,
-                                    pattern,
-                                    constraints,
-                                    false,
-                                    Utilities::MPI::this_mpi_process(
-                                      communicator));
+    DynamicSparsityPattern pattern(written_rows);
+    DoFTools::make_sparsity_pattern(dof_handler, pattern, constraints, false);
     // The ghost penalty couples the DoFs of the two cells of its faces.
     std::vector<types::global_dof_index> dofs, neighbor_dofs;
     for_each_ghost_penalty_face([&](const auto &cell, const unsigned int face) {
@@ -643,8 +660,11 @@ namespace rbc_ifem
       dofs.insert(dofs.end(), neighbor_dofs.begin(), neighbor_dofs.end());
       constraints.add_entries_local_to_global(dofs, pattern, false);
     });
-    pattern.compress();
-    matrix.reinit(pattern);
+    SparsityTools::distribute_sparsity_pattern(pattern,
+                                               owned_dofs,
+                                               communicator,
+                                               written_rows);
+    matrix.reinit(owned_dofs, owned_dofs, pattern, communicator);
     rhs.reinit(owned_dofs, communicator);
     solution.reinit(owned_dofs, relevant_dofs, communicator);
   }

@@ -9,6 +9,7 @@
 #include <deal.II/base/timer.h>
 #include <deal.II/distributed/tria_base.h>
 #include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/mapping_q_cache.h>
 #include <deal.II/grid/cell_id.h>
 #include <deal.II/hp/fe_collection.h>
 #include <deal.II/hp/mapping_collection.h>
@@ -214,6 +215,14 @@ namespace rbc_ifem
     /// Which membrane each surface quadrature point of a cut cell is on.
     using SurfacePoints = std::vector<MembraneDistance::ClosestPoint>;
 
+    /**
+     * The mapping's support points of the cells this rank evaluates on
+     * (owned and ghost), placed on the capillary's manifolds once per mesh:
+     * every FEValues reinit would otherwise place them again, several times
+     * per cell.
+     */
+    void
+    cache_mapping();
     void
     compute_level_set();
     /**
@@ -342,8 +351,8 @@ namespace rbc_ifem
     std::shared_ptr<const MembraneDistance>  shared_distance;
     std::shared_ptr<const MembraneDistance>  distance;
 
-    const MappingQ<3>              mapping;
-    const hp::MappingCollection<3> mapping_collection;
+    MappingQCache<3>         mapping;
+    hp::MappingCollection<3> mapping_collection;
     /// On uncut cells, and the 1-D rule of the cut cells' quadratures.
     const hp::QCollection<3> cell_quadrature;
     const hp::QCollection<1> line_quadrature;

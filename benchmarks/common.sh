@@ -29,3 +29,27 @@ haberman_sayre='
 body_fitted() {
   "$(dirname "$exe")/sphere-in-tube-reference" "$1" 5 | awk -F, 'END { print $5, $6, $7 }'
 }
+
+# write_seven_cells_prm METHOD DEGREE SURFACE BAND: run.prm, one CO diffusion
+# solve of seven uniform cells (benchmarks/diffusion.sh, diffusion_builds.sh).
+write_seven_cells_prm() {
+  cat > run.prm <<PRM
+set Experiment = diffusion
+set Output directory = out
+subsection Layout
+  set Kind = uniform
+  set Number of cells = 7
+end
+subsection Cells
+  set Surface refinements = $3
+end
+subsection Mesh
+  set Diffusion global refinements = 1
+  set Diffusion band refinements = $4
+end
+subsection Diffusion
+  set Method = $1
+  set Finite element degree = $2
+end
+PRM
+}

@@ -17,29 +17,6 @@ set -euo pipefail
 source "$(dirname "$0")/common.sh"
 benchmark_setup "$@"
 
-# write_prm METHOD DEGREE SURFACE BAND: run.prm, seven uniform cells.
-write_prm() {
-  cat > run.prm <<PRM
-set Experiment = diffusion
-set Output directory = out
-subsection Layout
-  set Kind = uniform
-  set Number of cells = 7
-end
-subsection Cells
-  set Surface refinements = $3
-end
-subsection Mesh
-  set Diffusion global refinements = 1
-  set Diffusion band refinements = $4
-end
-subsection Diffusion
-  set Method = $1
-  set Finite element degree = $2
-end
-PRM
-}
-
 # solve_summary: "DoFs iterations DM" from the run's log.txt.
 solve_summary() {
   sed -n 's/.*: \([0-9]*\) DoFs, \([0-9]*\) solver iterations.*DM \([0-9.]*\) .*/\1 \2 \3/p' log.txt
@@ -49,7 +26,7 @@ echo "| method | surface, band refinements | DoFs | solver its | DM [µm³ s⁻�
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for run in "Lagrange multiplier:1:3:3" "Lagrange multiplier:1:4:4" "cut cell:2:4:1" "cut cell:2:4:2"; do
   IFS=: read -r method degree surface band <<<"$run"
-  write_prm "$method" "$degree" "$surface" "$band"
+  write_seven_cells_prm "$method" "$degree" "$surface" "$band"
   /usr/bin/env time -f "%M" -o memory.txt mpirun -np "$ranks" "$exe" run.prm > log.txt
   read -r dofs its dm <<<"$(solve_summary)"
   seconds() { awk -F, -v s="\"$1\"" '$1 == s {t += $3} END {printf "%.2f", t}' out/timing.csv; }
@@ -65,7 +42,7 @@ echo
 echo "| ghost penalty | band refinements | DoFs | CG its | DM [µm³ s⁻¹ Torr⁻¹] | from 13.971 |"
 echo "|---|---|---|---|---|---|"
 for band in 1 2; do
-  write_prm "cut cell" 2 4 "$band"
+  write_seven_cells_prm "cut cell" 2 4 "$band"
   for ghost in 0.05 0.02 0.01 0.005 0.002; do
     mpirun -np "$ranks" "$exe" run.prm --set "Diffusion/Ghost penalty=$ghost" > log.txt
     read -r dofs its dm <<<"$(solve_summary)"

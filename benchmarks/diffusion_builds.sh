@@ -16,25 +16,7 @@ repeats=${3:-5}
 source "$(dirname "$0")/common.sh"
 benchmark_setup "$before" "${4:-2}"
 
-cat > run.prm <<PRM
-set Experiment = diffusion
-set Output directory = out
-subsection Layout
-  set Kind = uniform
-  set Number of cells = 7
-end
-subsection Cells
-  set Surface refinements = 4
-end
-subsection Mesh
-  set Diffusion global refinements = 1
-  set Diffusion band refinements = 1
-end
-subsection Diffusion
-  set Method = cut cell
-  set Finite element degree = 2
-end
-PRM
+write_seven_cells_prm "cut cell" 2 4 1
 
 echo "| build | total without output | mesh | level set | surface points | sparsity | assembly | of it: AMG setup | solve | dm.csv as the first |"
 echo "|---|---|---|---|---|---|---|---|---|---|"

@@ -12,6 +12,7 @@
 #include <deal.II/grid/tria_description.h>
 
 #include <iomanip>
+#include <map>
 #include <memory>
 #include <sstream>
 
@@ -73,17 +74,83 @@ namespace rbc_ifem
       }
     };
 
+    /// The subdomain of each active cell of a serial mesh.
+    using Partition = std::map<CellId, types::subdomain_id>;
+
+    /**
+     * Partition @p serial into @p n_parts by METIS, numbering the parts so
+     * that each keeps as many cells of @p previous (the partition of the
+     * mesh that @p serial refines, empty if none) as it can; then store the
+     * new partition in @p previous. A mesh built again after a failed attempt
+     * (refined where the level set could not resolve it) is partitioned
+     * afresh and so stays balanced, and METIS cuts it much where it cut the
+     * last one, but may number the parts the other way round: numbered so,
+     * each rank gets back most of its cells and finds their level set nodes
+     * answered already (MembraneDistance remembers them).
+     */
+    void
+    partition_like(Triangulation<3>  &serial,
+                   const unsigned int n_parts,
+                   Partition         &previous)
+    {
+      GridTools::partition_triangulation(n_parts, serial);
+      if (!previous.empty())
+        {
+          // overlap[new part][old part]: cells, counted on the finer mesh.
+          std::vector<std::vector<unsigned int>> overlap(
+            n_parts, std::vector<unsigned int>(n_parts, 0));
+          for (const auto &cell : serial.active_cell_iterators())
+            {
+              Triangulation<3>::cell_iterator ancestor = cell;
+              while (previous.count(ancestor->id()) == 0 &&
+                     ancestor->level() > 0)
+                ancestor = ancestor->parent();
+              if (const auto old = previous.find(ancestor->id());
+                  old != previous.end())
+                ++overlap[cell->subdomain_id()][old->second];
+            }
+          // Greedily, the largest overlap first.
+          std::vector<types::subdomain_id> number(
+            n_parts, numbers::invalid_subdomain_id);
+          std::vector<bool> taken(n_parts, false);
+          for (unsigned int k = 0; k < n_parts; ++k)
+            {
+              unsigned int best_new = 0, best_old = 0, most = 0;
+              bool         found = false;
+              for (unsigned int a = 0; a < n_parts; ++a)
+                for (unsigned int b = 0; b < n_parts; ++b)
+                  if (number[a] == numbers::invalid_subdomain_id && !taken[b] &&
+                      (!found || overlap[a][b] > most))
+                    {
+                      best_new = a;
+                      best_old = b;
+                      most     = overlap[a][b];
+                      found    = true;
+                    }
+              number[best_new] = best_old;
+              taken[best_old]  = true;
+            }
+          for (const auto &cell : serial.active_cell_iterators())
+            cell->set_subdomain_id(number[cell->subdomain_id()]);
+        }
+      previous.clear();
+      for (const auto &cell : serial.active_cell_iterators())
+        previous.emplace(cell->id(), cell->subdomain_id());
+    }
+
     /**
      * The uptake mesh of @p recipe on @p communicator: for cut cells fully
      * distributed (rank 0 builds it and sends each rank its cells and their
-     * ghost layer, partitioned by METIS), for the multiplier shared (every
-     * rank locates every membrane point).
+     * ghost layer, partitioned by METIS like @p previous, which it updates:
+     * partition_like()), for the multiplier shared (every rank locates every
+     * membrane point).
      */
     std::unique_ptr<parallel::TriangulationBase<3>>
     make_uptake_mesh(const UptakeMeshRecipe &recipe,
                      const DiffusionMethod   method,
                      const MPI_Comm          communicator,
-                     TimerOutput            &timer)
+                     TimerOutput            &timer,
+                     Partition              &previous)
     {
       TimerOutput::Scope scope(timer, "diffusion mesh");
       if (method != DiffusionMethod::cut_cell)
@@ -103,10 +170,10 @@ namespace rbc_ifem
       const auto description = TriangulationDescription::Utilities::
         create_description_from_triangulation_in_groups<3, 3>(
           [&recipe](Triangulation<3> &serial) { recipe.make(serial); },
-          [n_ranks](Triangulation<3> &serial,
-                    const MPI_Comm &,
-                    const unsigned int) {
-            GridTools::partition_triangulation(n_ranks, serial);
+          [n_ranks, &previous](Triangulation<3> &serial,
+                               const MPI_Comm &,
+                               const unsigned int) {
+            partition_like(serial, n_ranks, previous);
           },
           communicator,
           n_ranks,
@@ -225,7 +292,9 @@ namespace rbc_ifem
       {
         UptakeMeshRecipe recipe{
           geometry, mesh_parameters, surfaces, band_refinements, {}};
-        mesh = make_uptake_mesh(recipe, d.method, communicator, timer);
+        Partition partition; // on the rank that builds the serial mesh
+        mesh =
+          make_uptake_mesh(recipe, d.method, communicator, timer, partition);
         // Cut cells: the membranes sampled once for every attempt below.
         if (d.method == DiffusionMethod::cut_cell)
           {
@@ -277,7 +346,8 @@ namespace rbc_ifem
                 }
               recipe.refinements.push_back(e.cells);
               mesh.reset();
-              mesh = make_uptake_mesh(recipe, d.method, communicator, timer);
+              mesh = make_uptake_mesh(
+                recipe, d.method, communicator, timer, partition);
             }
       }
 

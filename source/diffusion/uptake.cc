@@ -78,6 +78,37 @@ namespace rbc_ifem
     using Partition = std::map<CellId, types::subdomain_id>;
 
     /**
+     * For @p overlap[a][b], the cells that new part a shares with old part
+     * b: the old number of each new part, chosen greedily, the largest
+     * overlap first (the best numbering on two parts).
+     */
+    std::vector<types::subdomain_id>
+    numbering_that_keeps(const std::vector<std::vector<unsigned int>> &overlap)
+    {
+      const unsigned int               n_parts = overlap.size();
+      std::vector<types::subdomain_id> number(n_parts,
+                                              numbers::invalid_subdomain_id);
+      std::vector<bool>                taken(n_parts, false);
+      for (unsigned int k = 0; k < n_parts; ++k)
+        {
+          unsigned int best_new = 0, best_old = 0;
+          bool         found = false;
+          for (unsigned int a = 0; a < n_parts; ++a)
+            for (unsigned int b = 0; b < n_parts; ++b)
+              if (number[a] == numbers::invalid_subdomain_id && !taken[b] &&
+                  (!found || overlap[a][b] > overlap[best_new][best_old]))
+                {
+                  best_new = a;
+                  best_old = b;
+                  found    = true;
+                }
+          number[best_new] = best_old;
+          taken[best_old]  = true;
+        }
+      return number;
+    }
+
+    /**
      * Partition @p serial into @p n_parts by METIS, numbering the parts so
      * that each keeps as many cells of @p previous (the partition of the
      * mesh that @p serial refines, empty if none) as it can; then store the
@@ -109,27 +140,8 @@ namespace rbc_ifem
                   old != previous.end())
                 ++overlap[cell->subdomain_id()][old->second];
             }
-          // Greedily, the largest overlap first.
-          std::vector<types::subdomain_id> number(
-            n_parts, numbers::invalid_subdomain_id);
-          std::vector<bool> taken(n_parts, false);
-          for (unsigned int k = 0; k < n_parts; ++k)
-            {
-              unsigned int best_new = 0, best_old = 0, most = 0;
-              bool         found = false;
-              for (unsigned int a = 0; a < n_parts; ++a)
-                for (unsigned int b = 0; b < n_parts; ++b)
-                  if (number[a] == numbers::invalid_subdomain_id && !taken[b] &&
-                      (!found || overlap[a][b] > most))
-                    {
-                      best_new = a;
-                      best_old = b;
-                      most     = overlap[a][b];
-                      found    = true;
-                    }
-              number[best_new] = best_old;
-              taken[best_old]  = true;
-            }
+          const std::vector<types::subdomain_id> number =
+            numbering_that_keeps(overlap);
           for (const auto &cell : serial.active_cell_iterators())
             cell->set_subdomain_id(number[cell->subdomain_id()]);
         }

@@ -168,7 +168,7 @@ namespace rbc_ifem
     record.cells.set_header(
       "time,cell,x,y,z,area,volume,axial_length,max_radius,deformation_index,"
       "frame_x,volume_change,area_change,taylor_deformation,inclination,"
-      "min_gap,wall_gap");
+      "min_gap,wall_gap,local_area_change");
     record.dm.set_header(
       dm_header(cells.size(),
                 parameters.diffusion.uptake == CellUptake::reaction));
@@ -571,7 +571,8 @@ namespace rbc_ifem
                          s.taylor_deformation,
                          s.inclination,
                          gap_text(gaps[c].to_cells),
-                         gap_text(gaps[c].to_wall));
+                         gap_text(gaps[c].to_wall),
+                         s.largest_local_area_change);
       }
     for (RunObserver *observer : observers)
       observer->record(record.time, shapes);

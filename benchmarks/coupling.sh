@@ -8,16 +8,18 @@
 #   estimate), 800 steps;
 # - semi-implicit: prm/default.prm as it is, Δt = 3e-4 s (14 times the
 #   estimate), 40 steps; and at 6e-4 and 1.5e-4 s for the time-step study;
-# - semi-implicit with the area dilation modulus K = 500 pN/µm (the
-#   stretching experiment's) at Δt = 4e-5 s, 17 times its explicit limit,
-#   300 steps.
+# - with the area dilation modulus K = 500 pN/µm (the stretching
+#   experiment's): semi-implicit at Δt = 4e-5 s and 1.2e-4 s, 17 and 52
+#   times its explicit limit (300 and 100 steps), and explicit at 1.6e-6 s,
+#   0.69 of it, 7500 steps.
 #
 # Prints the wall time of each whole run (DM solves included) and the ratio,
 # DM at every DM instant with the difference, the deformation index and the
 # volume change at 12 ms, the FGMRES iterations per step, the deformation
-# index at 12 ms for Δt, Δt/2, Δt/4 with the observed order, and the largest
-# local area change (max over membrane cells of |A/A0 - 1|) at K = 50 and
-# 500 pN/µm. About 5 minutes on 2 ranks.
+# index at 12 ms for Δt, Δt/2, Δt/4 with the observed order, the same
+# comparison at K = 500 pN/µm, and the largest local area change (max over
+# membrane cells of |A/A0 - 1|, cells.csv's local_area_change) at every DM
+# instant at K = 50 and 500 pN/µm. About 12 minutes on 2 ranks.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 source "$here/benchmarks/common.sh"
@@ -36,7 +38,7 @@ end
 subsection Time
   set Time step       = $step
   set Number of steps = $steps
-  set Output interval = $steps
+  set Output interval = $interval
 end
 subsection Immersed cells
   set Coupling                  = $coupling
@@ -59,13 +61,15 @@ run semi semi-implicit 3e-4 40 4
 run semi_coarse semi-implicit 6e-4 20 2
 run semi_fine semi-implicit 1.5e-4 80 8
 run semi_stiff semi-implicit 4e-5 300 30 500
+run semi_stiff_large semi-implicit 1.2e-4 100 10 500
+run explicit_stiff explicit 1.6e-6 7500 750 500
 
 seconds() { printf '%.1f' "$(cat "$1.seconds")"; }
 echo "## Wall time of the whole default run on $ranks rank(s), DM solves included"
 echo
 echo "| coupling | Δt [s] | steps | wall [s] | FGMRES iterations per step |"
 echo "|---|---|---|---|---|"
-for name in explicit semi_fine semi semi_coarse semi_stiff; do
+for name in explicit semi_fine semi semi_coarse explicit_stiff semi_stiff semi_stiff_large; do
   step=$(sed -n 's/^  set Time step *= *//p' "$name.prm" | tail -1)
   steps=$(sed -n 's/^  set Number of steps *= *//p' "$name.prm" | tail -1)
   iterations=$(awk -F, 'NR > 1 { s += $8; n++ } END { printf "%.1f", s / n }' "$name/flow.csv")
@@ -102,15 +106,27 @@ awk -v a="$d1" -v b="$d2" -v c="$d3" -v e="$(shape explicit 10)" 'BEGIN {
   printf "| 6e-4 | %.6f | |\n| 3e-4 | %.6f | %.2e |\n| 1.5e-4 | %.6f | %.2e |\n", a, b, b - a, c, c - b
   printf "\nobserved order: %.2f (from the three); explicit at 1.5e-5 s: %.6f\n", log((b - a) / (c - b)) / log(2), e }'
 echo
-echo "## The largest local area change at 12 ms, max over membrane cells of |A/A0 - 1|"
+echo "## K = 500 pN/µm: explicit and semi-implicit"
 echo
-echo "| K [pN/µm] | coupling, Δt [s] | Δt / explicit limit | largest local area change | total area change |"
+ratio() { echo "$(cat "$1.seconds") / $(cat "$2.seconds")" | bc -l | xargs printf '%.2f'; }
+echo "ratio: $(ratio explicit_stiff semi_stiff) (explicit at 1.6e-6 s over semi-implicit at 4e-5 s), $(ratio explicit_stiff semi_stiff_large) (over semi-implicit at 1.2e-4 s)"
+echo
+echo "| at 12 ms | explicit 1.6e-6 s | semi-implicit 4e-5 s | semi-implicit 1.2e-4 s |"
+echo "|---|---|---|---|"
+last_dm() { awk -F, 'END { print $2 }' "$1/dm.csv"; }
+awk -v a="$(last_dm explicit_stiff)" -v b="$(last_dm semi_stiff)" -v c="$(last_dm semi_stiff_large)" 'BEGIN {
+  printf "| DM [µm³/(s Torr)] | %.5f | %.5f (%+.3f%%) | %.5f (%+.3f%%) |\n", a, b, 100 * (b / a - 1), c, 100 * (c / a - 1) }'
+awk -v a="$(shape explicit_stiff 10)" -v b="$(shape semi_stiff 10)" -v c="$(shape semi_stiff_large 10)" 'BEGIN {
+  printf "| deformation index | %.6f | %.6f (%+.2f%%) | %.6f (%+.2f%%) |\n", a, b, 100 * (b - a) / -a, c, 100 * (c - a) / -a }'
+awk -v a="$(shape explicit_stiff 12)" -v b="$(shape semi_stiff 12)" -v c="$(shape semi_stiff_large 12)" 'BEGIN {
+  printf "| volume change | %+.4f%% | %+.4f%% | %+.4f%% |\n", 100 * a, 100 * b, 100 * c }'
+echo
+echo "## The largest local area change, max over membrane cells of |A/A0 - 1|, at every DM instant"
+echo
+echo "| t [ms] | K = 50, semi-implicit 3e-4 s | K = 500, explicit 1.6e-6 s | K = 500, semi-implicit 4e-5 s | K = 500, semi-implicit 1.2e-4 s |"
 echo "|---|---|---|---|---|"
-for name in semi semi_stiff; do
-  modulus=$(sed -n 's/^  set Area dilation modulus *= *//p' "$name.prm" | tail -1)
-  step=$(sed -n 's/^  set Time step *= *//p' "$name.prm" | tail -1)
-  factor=$(sed -n 's/.*Δt = [0-9.e-]* s (\([0-9.]*\) of the estimate).*/\1/p' "$name.log")
-  local_change=$(sed -n 's/.*largest local area change \([0-9.e-]*%\).*/\1/p' "$name.log")
-  total=$(sed -n 's/.*, area change \([0-9.e-]*%\).*/\1/p' "$name.log")
-  printf '| %s | semi-implicit, %s | %.1f | %s | %s |\n' "$modulus" "$step" "$factor" "$local_change" "$total"
-done
+# column RUN NAME: the column NAME of RUN's cells.csv, without its header.
+column() { awk -F, -v name="$2" 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == name) c = i; next } { print $c }' "$1/cells.csv"; }
+paste -d, <(column semi time) <(column semi local_area_change) <(column explicit_stiff local_area_change) \
+  <(column semi_stiff local_area_change) <(column semi_stiff_large local_area_change) |
+  awk -F, '{ printf "| %.1f | %.3f%% | %.3f%% | %.3f%% | %.3f%% |\n", 1000 * $1, 100 * $2, 100 * $3, 100 * $4, 100 * $5 }'

@@ -12,7 +12,7 @@
 #
 # Prints, at every 1.2 ms, cells.csv's local_area_change (max over the
 # membrane cells of |A/A0 - 1|) and the deformation index of both runs, and
-# each run's wall time. About 7 minutes on 2 ranks.
+# each run's wall time. About 6 minutes on 2 ranks.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 source "$here/benchmarks/common.sh"

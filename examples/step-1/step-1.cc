@@ -33,6 +33,69 @@
 using namespace dealii;
 using namespace rbc_ifem;
 
+// @sect3{The parameters}
+//
+// rbc_ifem::Parameters gathers the parameter structs of every concern
+// (geometry, mesh, cells, layout, diffusion, ...). Each declares its
+// subsection in a ParameterHandler with its members' values as defaults
+// and binds the members to it, so that parsing the file fills them; then
+// validate() rejects what a pattern cannot (a zero length, say), with
+// a message that names the parameter. (The handler keeps the members it
+// binds: both live as long as the program.)
+void
+read_parameters(const std::string &file,
+                Parameters        &parameters,
+                ParameterHandler  &prm)
+{
+  parameters.add_parameters(prm);
+  prm.parse_input(file);
+  parameters.validate();
+}
+
+// @sect3{The diffusion mesh}
+//
+// Three materials in one mesh: the lumen (plasma; the cell interior is
+// part of it), the vessel wall and the alveolar gas layer, each with its
+// own material id, so that each gets its own solubility times
+// diffusivity αD. The membrane cuts through the hexahedra anywhere (the
+// meshes do not match); the mesh is refined in a band around it so that
+// it resolves the membrane about as finely as the membrane's own cells.
+void
+make_diffusion_mesh(Triangulation<3>            &mesh,
+                    const Parameters            &parameters,
+                    const std::vector<Point<3>> &membrane_vertices)
+{
+  create_diffusion_mesh(mesh,
+                        parameters.geometry,
+                        parameters.mesh.diffusion_global_refinements);
+  refine_near_points(mesh,
+                     membrane_vertices,
+                     parameters.mesh.band_width,
+                     parameters.mesh.diffusion_band_refinements);
+}
+
+// @sect3{DM and the flux map}
+//
+// The CO flow into the cell is ∫ λ dA over its membrane; DM is that
+// flow over P_A. What enters the cell must have left the gas: the flow
+// through the alveolar surface agrees with it to the discretisation
+// error (0.1% here), a check of the solution any user can make.
+void
+report_uptake(const CODiffusion        &diffusion,
+              const Parameters         &parameters,
+              const ConditionalOStream &pcout)
+{
+  const double into_cell = diffusion.membrane_flows()[0];
+  const double from_gas  = diffusion.boundary_flow();
+  pcout << diffusion.n_pressure_dofs() << " DoFs of P, "
+        << diffusion.n_multiplier_dofs() << " of λ; "
+        << diffusion.n_iterations() << " FGMRES iterations" << std::endl
+        << "CO flow into the cell " << into_cell << " µm³/s, out of the gas "
+        << from_gas << " µm³/s" << std::endl
+        << "DM = " << into_cell / parameters.diffusion.alveolar_pressure
+        << " µm³/(s Torr)" << std::endl;
+}
+
 int
 main(int argc, char *argv[])
 {
@@ -40,20 +103,9 @@ main(int argc, char *argv[])
   const MPI_Comm                   communicator = MPI_COMM_WORLD;
   ConditionalOStream               pcout(std::cout,
                            Utilities::MPI::this_mpi_process(communicator) == 0);
-
-  // @sect3{The parameters}
-  //
-  // rbc_ifem::Parameters gathers the parameter structs of every concern
-  // (geometry, mesh, cells, layout, diffusion, ...). Each declares its
-  // subsection in a ParameterHandler with its members' values as defaults
-  // and binds the members to it, so that parsing the file fills them; then
-  // validate() rejects what a pattern cannot (a zero length, say), with
-  // a message that names the parameter.
-  Parameters       parameters;
-  ParameterHandler prm;
-  parameters.add_parameters(prm);
-  prm.parse_input(argc > 1 ? argv[1] : "step-1.prm");
-  parameters.validate();
+  Parameters                       parameters;
+  ParameterHandler                 prm;
+  read_parameters(argc > 1 ? argv[1] : "step-1.prm", parameters, prm);
 
   // @sect3{The red cell}
   //
@@ -62,36 +114,21 @@ main(int argc, char *argv[])
   // membrane as a Triangulation<2,3> on the exact Evans-Fung surface,
   // refined Cells/Surface refinements times. It checks that the cell fits
   // into the lumen and clears the wall.
-  const PlacedCells                              cells(parameters.layout,
+  const PlacedCells cells(parameters.layout,
                           parameters.geometry,
                           parameters.cells,
                           parameters.cells.surface_refinements);
-  const std::vector<const Triangulation<2, 3> *> membranes =
-    cells.membranes.surfaces();
   pcout << "one red cell of " << parameters.cells.diameter << " µm: volume "
         << cells.membranes.volumes()[0] << " µm³, "
-        << membranes[0]->n_active_cells() << " membrane cells" << std::endl;
+        << cells.membranes.surfaces()[0]->n_active_cells() << " membrane cells"
+        << std::endl;
 
-  // @sect3{The diffusion mesh}
-  //
-  // Three materials in one mesh: the lumen (plasma; the cell interior is
-  // part of it), the vessel wall and the alveolar gas layer, each with its
-  // own material id, so that each gets its own solubility times
-  // diffusivity αD. The membrane cuts through the hexahedra anywhere (the
-  // meshes do not match); the mesh is refined in a band around it so that
-  // it resolves the membrane about as finely as the membrane's own cells.
   parallel::shared::Triangulation<3> mesh(
     communicator,
     Triangulation<3>::none,
     false,
     parallel::shared::Triangulation<3>::partition_metis);
-  create_diffusion_mesh(mesh,
-                        parameters.geometry,
-                        parameters.mesh.diffusion_global_refinements);
-  refine_near_points(mesh,
-                     membranes[0]->get_vertices(),
-                     parameters.mesh.band_width,
-                     parameters.mesh.diffusion_band_refinements);
+  make_diffusion_mesh(mesh, parameters, cells.membranes.vertices());
   pcout << "diffusion mesh: " << mesh.n_active_cells() << " cells, "
         << mesh.n_used_vertices() << " nodes" << std::endl;
 
@@ -117,25 +154,10 @@ main(int argc, char *argv[])
     DiffusionBoundary::alveolar_surface,
     communicator,
     timer);
-  diffusion.setup(mesh, membranes, cells.membranes.mapping());
+  diffusion.setup(mesh, cells.membranes.membrane_surfaces());
   diffusion.assemble();
   diffusion.solve();
-
-  // @sect3{DM and the flux map}
-  //
-  // The CO flow into the cell is ∫ λ dA over its membrane; DM is that
-  // flow over P_A. What enters the cell must have left the gas: the flow
-  // through the alveolar surface agrees with it to the discretisation
-  // error (0.1% here), a check of the solution any user can make.
-  const double into_cell = diffusion.membrane_flows()[0];
-  const double from_gas  = diffusion.boundary_flow();
-  pcout << diffusion.n_pressure_dofs() << " DoFs of P, "
-        << diffusion.n_multiplier_dofs() << " of λ; "
-        << diffusion.n_iterations() << " FGMRES iterations" << std::endl
-        << "CO flow into the cell " << into_cell << " µm³/s, out of the gas "
-        << from_gas << " µm³/s" << std::endl
-        << "DM = " << into_cell / parameters.diffusion.alveolar_pressure
-        << " µm³/(s Torr)" << std::endl;
+  report_uptake(diffusion, parameters, pcout);
 
   // The fields as a run of rbc-ifem writes them: diffusion.pvd (P and the
   // material ids) and diffusion_membranes.pvd (λ as co_flux, and -λ n as

@@ -1,6 +1,7 @@
 #include <rbc_ifem/coupling/cell_population.h>
 #include <rbc_ifem/coupling/membrane_forces.h>
 #include <rbc_ifem/geometry/cell_surface.h>
+#include <rbc_ifem/membrane/deformed_surface_mapping.h>
 
 #include <algorithm>
 #include <cmath>
@@ -213,18 +214,42 @@ namespace rbc_ifem
     return surfaces;
   }
 
-  DeformedSurfaceMapping
-  CellPopulation::surface_mapping(
-    const std::vector<std::unique_ptr<Triangulation<2, 3>>> &surfaces) const
+  namespace
   {
-    std::vector<const Triangulation<2, 3> *> meshes;
-    std::vector<const Membrane *>            membranes;
-    for (unsigned int c = 0; c < size(); ++c)
+    /// The current surfaces and the mapping that curves them, which a
+    /// MembraneSurfaces view keeps alive.
+    struct CurrentSurfaces
+    {
+      CurrentSurfaces(std::vector<std::unique_ptr<Triangulation<2, 3>>> owned,
+                      const std::vector<const Membrane *> &membranes,
+                      const std::vector<Vector<double>>   &positions)
+        : owned(std::move(owned))
+        , mapping(meshes(), membranes, positions)
+      {}
+
+      std::vector<const Triangulation<2, 3> *>
+      meshes() const
       {
-        meshes.push_back(surfaces[c].get());
-        membranes.push_back(cell_membranes[c].get());
+        std::vector<const Triangulation<2, 3> *> pointers;
+        for (const auto &surface : owned)
+          pointers.push_back(surface.get());
+        return pointers;
       }
-    return DeformedSurfaceMapping(meshes, membranes, x);
+
+      const std::vector<std::unique_ptr<Triangulation<2, 3>>> owned;
+      const DeformedSurfaceMapping                            mapping;
+    };
+  } // namespace
+
+  MembraneSurfaces
+  CellPopulation::membrane_surfaces() const
+  {
+    std::vector<const Membrane *> membranes;
+    for (const auto &membrane : cell_membranes)
+      membranes.push_back(membrane.get());
+    const auto current =
+      std::make_shared<const CurrentSurfaces>(current_surfaces(), membranes, x);
+    return MembraneSurfaces(current->meshes(), current->mapping, current);
   }
 
   double

@@ -170,9 +170,8 @@ namespace rbc_ifem
   {}
 
   void
-  CODiffusion::setup(const parallel::TriangulationBase<3>           &mesh,
-                     const std::vector<const Triangulation<2, 3> *> &membranes,
-                     const MappingQ<2, 3> &membrane_mapping)
+  CODiffusion::setup(const parallel::TriangulationBase<3> &mesh,
+                     const MembraneSurfaces               &membranes)
   {
     TimerOutput::Scope scope(timer, "diffusion: setup");
     this->mesh =
@@ -181,8 +180,8 @@ namespace rbc_ifem
                 ExcMessage("CODiffusion needs a parallel::shared::"
                            "Triangulation: every rank locates every membrane "
                            "point in it."));
-    this->membranes        = membranes;
-    this->membrane_mapping = &membrane_mapping;
+    this->membranes        = membranes.meshes();
+    this->membrane_mapping = &membranes.mapping();
 
     dof_handler.reinit(*this->mesh);
     dof_handler.distribute_dofs(fe);
@@ -198,6 +197,12 @@ namespace rbc_ifem
     setup_matrices();
   }
 
+
+  double
+  CODiffusion::dm_total() const
+  {
+    return flow_per_pressure();
+  }
 
   void
   CODiffusion::setup_multipliers()
@@ -221,17 +226,14 @@ namespace rbc_ifem
     owned_multipliers.add_range(n * rank / n_ranks, n * (rank + 1) / n_ranks);
   }
 
-  void
-  CODiffusion::locate_membrane_points()
+  std::vector<Point<3>>
+  CODiffusion::membrane_quadrature_points()
   {
-    coupling = std::make_unique<CouplingData>();
     FEValues<2, 3>        fe_values(*membrane_mapping,
                              multiplier_fe,
                              coupling->quadrature,
                              update_quadrature_points | update_JxW_values);
-    const unsigned int    n_q = coupling->quadrature.size();
     std::vector<Point<3>> points;
-    double                area = 0.;
     for (unsigned int m = 0; m < membranes.size(); ++m)
       for (const auto &cell :
            multiplier_dof_handlers[m]->active_cell_iterators())
@@ -240,8 +242,6 @@ namespace rbc_ifem
           for (const Point<3> &p : fe_values.get_quadrature_points())
             points.push_back(wrap_into_segment(p, period));
           coupling->JxW.push_back(fe_values.get_JxW_values());
-          for (const double dA : fe_values.get_JxW_values())
-            area += dA;
           std::vector<types::global_dof_index> dofs(
             multiplier_fe.n_dofs_per_cell());
           cell->get_dof_indices(dofs);
@@ -249,11 +249,20 @@ namespace rbc_ifem
             dof += multiplier_offsets[m];
           coupling->multiplier_dofs.push_back(dofs);
         }
+    return points;
+  }
+
+  void
+  CODiffusion::locate_membrane_points()
+  {
+    coupling                           = std::make_unique<CouplingData>();
+    const std::vector<Point<3>> points = membrane_quadrature_points();
     if (points.empty())
       return;
 
     TimerOutput::Scope        scope(timer, "diffusion: point location");
     const GridTools::Cache<3> cache(*mesh, mapping);
+    const unsigned int        n_q = coupling->quadrature.size();
     // Consecutive points lie on one membrane cell, so the cell of the last
     // point is the best first guess for the next: 10 times faster than
     // GridTools::compute_point_locations() at a million cells.
@@ -288,10 +297,19 @@ namespace rbc_ifem
                        std::make_pair(b.membrane_cell,
                                       b.volume_cell->active_cell_index());
               });
+    check_inf_sup();
+  }
 
+  void
+  CODiffusion::check_inf_sup()
+  {
     // The multiplier space must not be finer than the volume mesh around
     // it (the inf-sup condition of the saddle point problem): with membrane
     // cells 1.7 times smaller FGMRES no longer converges.
+    double area = 0.;
+    for (const std::vector<double> &JxW : coupling->JxW)
+      for (const double dA : JxW)
+        area += dA;
     const double membrane_cell_size = std::sqrt(area / coupling->JxW.size());
     double       volume_cell_size   = 0.;
     coupling->for_each_run([&](const unsigned int,
@@ -302,9 +320,7 @@ namespace rbc_ifem
     });
     volume_cell_size /= coupling->points.size();
     if (volume_cell_size > 1.4 * membrane_cell_size)
-      {
-        throw MembranesFinerThanMesh(membrane_cell_size, volume_cell_size);
-      }
+      throw MembranesFinerThanMesh(membrane_cell_size, volume_cell_size);
 
     constraint_scale =
       permeability(coupling->points.front().volume_cell->material_id()) /

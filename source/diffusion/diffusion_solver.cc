@@ -147,7 +147,7 @@ namespace rbc_ifem
   }
 
   double
-  DiffusionSolver::dm_total() const
+  DiffusionSolver::flow_per_pressure() const
   {
     return total_flow() / alveolar_pressure;
   }

@@ -45,6 +45,16 @@ namespace rbc_ifem
   DiffusionParameters::add_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Diffusion");
+    add_material_parameters(prm);
+    add_method_parameters(prm);
+    add_solver_parameters(prm);
+    add_reaction_parameters(prm);
+    prm.leave_subsection();
+  }
+
+  void
+  DiffusionParameters::add_material_parameters(ParameterHandler &prm)
+  {
     add_parameter(prm,
                   "Alveolar pressure",
                   alveolar_pressure,
@@ -86,6 +96,11 @@ namespace rbc_ifem
                  "alveolar gas",
                  "an ideal gas at 37 °C: (1/760) (273.15/310.15) = "
                  "1.159e-3");
+  }
+
+  void
+  DiffusionParameters::add_method_parameters(ParameterHandler &prm)
+  {
     add_selection(
       prm,
       "Method",
@@ -136,6 +151,11 @@ namespace rbc_ifem
                   "Below about 0.005 CG needs more iterations "
                   "(doc/diffusion.md).",
                   Patterns::Double(0.));
+  }
+
+  void
+  DiffusionParameters::add_solver_parameters(ParameterHandler &prm)
+  {
     add_parameter(prm,
                   "Linear solver tolerance",
                   linear_tolerance,
@@ -151,8 +171,6 @@ namespace rbc_ifem
                   "The linear solver gives up (and the run stops) after this "
                   "many iterations.",
                   Patterns::Integer(1));
-    add_reaction_parameters(prm);
-    prm.leave_subsection();
   }
 
   void

@@ -3,15 +3,8 @@
 
 namespace rbc_ifem
 {
-  CellFlowExperiment::CellFlowExperiment(const std::string      &name,
-                                         const Parameters       &parameters,
-                                         const ParameterHandler &prm,
-                                         const MPI_Comm          communicator)
-    : Experiment(name,
-                 parameters,
-                 prm,
-                 communicator,
-                 ParametersFile::before_work)
+  CellFlowExperiment::CellFlowExperiment(const ExperimentContext &context)
+    : Experiment(context, ParametersFile::before_work)
   {}
 
   void

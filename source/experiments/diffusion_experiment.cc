@@ -23,8 +23,7 @@ namespace rbc_ifem
       create_output_directory(directory, communicator);
       UptakeFields().write(diffusion, directory, 0., 0, communicator);
     };
-    const Uptake uptake =
-      solve(*cells, parameters.mesh.diffusion_band_refinements, write_fields);
+    const Uptake uptake = solve(*cells, write_fields);
     report(name_of(parameters.layout.kind, layout_kind_names()) + ", " +
              std::to_string(uptake.dm_cells.size()) + " cells",
            uptake);

@@ -7,17 +7,14 @@
 
 namespace rbc_ifem
 {
-  Experiment::Experiment(const std::string      &name,
-                         const Parameters       &parameters,
-                         const ParameterHandler &prm,
-                         const MPI_Comm          communicator,
-                         const ParametersFile    parameters_file)
-    : name(name)
-    , parameters(parameters)
-    , communicator(communicator)
+  Experiment::Experiment(const ExperimentContext &context,
+                         const ParametersFile     parameters_file)
+    : name(context.name)
+    , parameters(context.parameters)
+    , communicator(context.communicator)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
     , timer(MPI_COMM_SELF, pcout, TimerOutput::never, TimerOutput::wall_times)
-    , parameter_file_text(parameter_text(prm))
+    , parameter_file_text(parameter_text(context.prm))
     , parameters_file(parameters_file)
   {}
 

@@ -65,12 +65,9 @@ namespace rbc_ifem
   }
 
   FiniteUptakeExperiment::FiniteUptakeExperiment(
-    const std::string            &name,
-    const Parameters             &parameters,
-    const FiniteUptakeParameters &sweep,
-    const ParameterHandler       &prm,
-    const MPI_Comm                communicator)
-    : UptakeExperiment(name, parameters, prm, communicator)
+    const ExperimentContext      &context,
+    const FiniteUptakeParameters &sweep)
+    : UptakeExperiment(context)
     , sweep(sweep)
   {}
 
@@ -134,15 +131,7 @@ namespace rbc_ifem
         const double               volume =
           std::accumulate(volumes.begin(), volumes.end(), 0.);
         const std::vector<Uptake> uptakes =
-          solve_uptake_for_rates(parameters.geometry,
-                                 parameters.mesh,
-                                 parameters.diffusion,
-                                 cells->membranes.surfaces(),
-                                 cells->membranes.mapping(),
-                                 parameters.mesh.diffusion_band_refinements,
-                                 rates,
-                                 communicator,
-                                 timer);
+          uptake.solve_for_rates(cells->membranes.membrane_surfaces(), rates);
         const LayoutParameters &layout = cells->layout.parameters();
         Uptake                  sink   = uptakes.front();
         sink.dl_cells.clear();

@@ -9,15 +9,8 @@
 
 namespace rbc_ifem
 {
-  FlowExperiment::FlowExperiment(const std::string      &name,
-                                 const Parameters       &parameters,
-                                 const ParameterHandler &prm,
-                                 const MPI_Comm          communicator)
-    : Experiment(name,
-                 parameters,
-                 prm,
-                 communicator,
-                 ParametersFile::before_work)
+  FlowExperiment::FlowExperiment(const ExperimentContext &context)
+    : Experiment(context, ParametersFile::before_work)
     , triangulation(communicator)
     , fluid(triangulation,
             parameters.fluid,

@@ -128,16 +128,9 @@ namespace rbc_ifem
   } // namespace
 
   FlowingLayoutsExperiment::FlowingLayoutsExperiment(
-    const std::string              &name,
-    const Parameters               &parameters,
-    const FlowingLayoutsParameters &own,
-    const ParameterHandler         &prm,
-    const MPI_Comm                  communicator)
-    : Experiment(name,
-                 parameters,
-                 prm,
-                 communicator,
-                 ParametersFile::before_work)
+    const ExperimentContext        &context,
+    const FlowingLayoutsParameters &own)
+    : Experiment(context, ParametersFile::before_work)
     , own(own)
     , history("layout,n_cells,seed,hematocrit,time,dm_total,dm_per_cell,"
               "min_gap")

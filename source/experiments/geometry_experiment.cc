@@ -4,15 +4,8 @@
 
 namespace rbc_ifem
 {
-  GeometryExperiment::GeometryExperiment(const std::string      &name,
-                                         const Parameters       &parameters,
-                                         const ParameterHandler &prm,
-                                         const MPI_Comm          communicator)
-    : Experiment(name,
-                 parameters,
-                 prm,
-                 communicator,
-                 ParametersFile::after_work)
+  GeometryExperiment::GeometryExperiment(const ExperimentContext &context)
+    : Experiment(context, ParametersFile::after_work)
     , fluid_mesh(communicator,
                  Triangulation<3>::none,
                  false,

@@ -7,11 +7,8 @@
 
 namespace rbc_ifem
 {
-  LayoutsExperiment::LayoutsExperiment(const std::string      &name,
-                                       const Parameters       &parameters,
-                                       const ParameterHandler &prm,
-                                       const MPI_Comm          communicator)
-    : UptakeExperiment(name, parameters, prm, communicator)
+  LayoutsExperiment::LayoutsExperiment(const ExperimentContext &context)
+    : UptakeExperiment(context)
   {}
 
   void
@@ -41,8 +38,7 @@ namespace rbc_ifem
         double              hematocrit = 0.;
         for (const auto &cells : layouts)
           {
-            const Uptake uptake =
-              solve(*cells, parameters.mesh.diffusion_band_refinements);
+            const Uptake uptake = solve(*cells);
             report(cells->layout.description(), uptake);
             dm.push_back(uptake.dm_total);
             hematocrit += cells->hematocrit() / layouts.size();

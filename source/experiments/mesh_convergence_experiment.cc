@@ -32,12 +32,9 @@ namespace rbc_ifem
   }
 
   MeshConvergenceExperiment::MeshConvergenceExperiment(
-    const std::string               &name,
-    const Parameters                &parameters,
-    const MeshConvergenceParameters &study,
-    const ParameterHandler          &prm,
-    const MPI_Comm                   communicator)
-    : UptakeExperiment(name, parameters, prm, communicator)
+    const ExperimentContext         &context,
+    const MeshConvergenceParameters &study)
+    : UptakeExperiment(context)
     , study(study)
   {}
 
@@ -73,7 +70,8 @@ namespace rbc_ifem
                                                 parameters.cells,
                                                 membrane_refinements(level));
         levels.push_back(
-          solve(*cells, parameters.mesh.diffusion_band_refinements + level));
+          uptake_solver(parameters.mesh.diffusion_band_refinements + level)
+            .solve(cells->membranes.membrane_surfaces()));
         report("level " + std::to_string(level) + ", " +
                  std::to_string(levels.back().n_nodes) + " nodes",
                levels.back());

@@ -33,15 +33,9 @@ namespace rbc_ifem
       return {name,
               documentation,
               nullptr,
-              [](const std::string &name,
-                 const Parameters  &parameters,
-                 const ExperimentParameters *,
-                 const ParameterHandler &prm,
-                 const MPI_Comm          communicator) {
-                return std::make_unique<ExperimentClass>(name,
-                                                         parameters,
-                                                         prm,
-                                                         communicator);
+              [](const ExperimentContext &context,
+                 const ExperimentParameters *) {
+                return std::make_unique<ExperimentClass>(context);
               }};
     }
 
@@ -53,37 +47,20 @@ namespace rbc_ifem
       return {name,
               documentation,
               [] { return std::make_unique<OwnParameters>(); },
-              [](const std::string          &name,
-                 const Parameters           &parameters,
-                 const ExperimentParameters *own,
-                 const ParameterHandler     &prm,
-                 const MPI_Comm              communicator) {
+              [](const ExperimentContext    &context,
+                 const ExperimentParameters *own) {
                 return std::make_unique<ExperimentClass>(
-                  name,
-                  parameters,
-                  static_cast<const OwnParameters &>(*own),
-                  prm,
-                  communicator);
+                  context, static_cast<const OwnParameters &>(*own));
               }};
     }
 
     /// "flow" is the plasma alone, or with the immersed cells.
     std::unique_ptr<Experiment>
-    create_flow(const std::string &name,
-                const Parameters  &parameters,
-                const ExperimentParameters *,
-                const ParameterHandler &prm,
-                const MPI_Comm          communicator)
+    create_flow(const ExperimentContext &context, const ExperimentParameters *)
     {
-      if (parameters.immersed.enabled)
-        return std::make_unique<CellFlowExperiment>(name,
-                                                    parameters,
-                                                    prm,
-                                                    communicator);
-      return std::make_unique<FlowExperiment>(name,
-                                              parameters,
-                                              prm,
-                                              communicator);
+      if (context.parameters.immersed.enabled)
+        return std::make_unique<CellFlowExperiment>(context);
+      return std::make_unique<FlowExperiment>(context);
     }
   } // namespace
 
@@ -279,7 +256,8 @@ namespace rbc_ifem
   {
     const unsigned int t = chosen();
     return experiment_types()[t].create(
-      experiment_types()[t].name, parameters, own[t].get(), prm, communicator);
+      {experiment_types()[t].name, parameters, prm, communicator},
+      own[t].get());
   }
 
   const Parameters &

@@ -146,16 +146,9 @@ namespace rbc_ifem
     };
   } // namespace
 
-  ShearExperiment::ShearExperiment(const std::string      &name,
-                                   const Parameters       &parameters,
-                                   const ShearParameters  &shear,
-                                   const ParameterHandler &prm,
-                                   const MPI_Comm          communicator)
-    : Experiment(name,
-                 parameters,
-                 prm,
-                 communicator,
-                 ParametersFile::before_work)
+  ShearExperiment::ShearExperiment(const ExperimentContext &context,
+                                   const ShearParameters   &shear)
+    : Experiment(context, ParametersFile::before_work)
     , shear(shear)
   {}
 

@@ -65,16 +65,9 @@ namespace rbc_ifem
   }
 
   StretchingExperiment::StretchingExperiment(
-    const std::string          &name,
-    const Parameters           &parameters,
-    const StretchingParameters &stretching,
-    const ParameterHandler     &prm,
-    const MPI_Comm              communicator)
-    : Experiment(name,
-                 parameters,
-                 prm,
-                 communicator,
-                 ParametersFile::after_work)
+    const ExperimentContext    &context,
+    const StretchingParameters &stretching)
+    : Experiment(context, ParametersFile::after_work)
     , stretching(stretching)
   {}
 

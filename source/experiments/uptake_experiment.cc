@@ -4,32 +4,26 @@
 
 namespace rbc_ifem
 {
-  UptakeExperiment::UptakeExperiment(const std::string      &name,
-                                     const Parameters       &parameters,
-                                     const ParameterHandler &prm,
-                                     const MPI_Comm          communicator)
-    : Experiment(name,
-                 parameters,
-                 prm,
-                 communicator,
-                 ParametersFile::after_work)
+  UptakeExperiment::UptakeExperiment(const ExperimentContext &context)
+    : Experiment(context, ParametersFile::after_work)
+    , uptake(uptake_solver(parameters.mesh.diffusion_band_refinements))
   {}
+
+  UptakeSolver
+  UptakeExperiment::uptake_solver(const unsigned int band_refinements)
+  {
+    MeshParameters mesh             = parameters.mesh;
+    mesh.diffusion_band_refinements = band_refinements;
+    return UptakeSolver(
+      parameters.geometry, mesh, parameters.diffusion, communicator, timer);
+  }
 
   Uptake
   UptakeExperiment::solve(
     const PlacedCells                                  &cells,
-    const unsigned int                                  band_refinements,
     const std::function<void(const DiffusionSolver &)> &write_fields)
   {
-    return solve_uptake(parameters.geometry,
-                        parameters.mesh,
-                        parameters.diffusion,
-                        cells.membranes.surfaces(),
-                        cells.membranes.mapping(),
-                        band_refinements,
-                        communicator,
-                        timer,
-                        write_fields);
+    return uptake.solve(cells.membranes.membrane_surfaces(), write_fields);
   }
 
   void

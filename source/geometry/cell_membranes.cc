@@ -43,6 +43,12 @@ namespace rbc_ifem
     return membrane_mapping;
   }
 
+  MembraneSurfaces
+  CellMembranes::membrane_surfaces() const
+  {
+    return MembraneSurfaces(surfaces(), membrane_mapping);
+  }
+
   const std::vector<SurfaceMeasures> &
   CellMembranes::measures() const
   {
@@ -61,12 +67,7 @@ namespace rbc_ifem
   std::vector<Point<3>>
   CellMembranes::vertices() const
   {
-    std::vector<Point<3>> points;
-    for (const auto &membrane : membranes)
-      points.insert(points.end(),
-                    membrane->get_vertices().begin(),
-                    membrane->get_vertices().end());
-    return points;
+    return membrane_surfaces().vertices();
   }
 
   CsvTable

@@ -1,144 +1,22 @@
 #include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/interruption.h>
 #include <rbc_ifem/base/output.h>
-#include <rbc_ifem/base/parameter_text.h>
 #include <rbc_ifem/base/solver_failure.h>
 #include <rbc_ifem/coupling/contact_forces.h>
 #include <rbc_ifem/coupling/membrane_forces.h>
 #include <rbc_ifem/coupling/semi_implicit_load.h>
 #include <rbc_ifem/coupling/time_step_limit.h>
-#include <rbc_ifem/diffusion/co_diffusion.h>
-#include <rbc_ifem/diffusion/uptake.h>
+#include <rbc_ifem/diffusion/uptake_solver.h>
 #include <rbc_ifem/geometry/capillary_mesh.h>
 #include <rbc_ifem/geometry/mesh_hierarchy.h>
 #include <rbc_ifem/ifem/ifem_simulation.h>
 
-#include <boost/archive/binary_iarchive.hpp>
-#include <boost/archive/binary_oarchive.hpp>
-#include <boost/crc.hpp>
-#include <boost/serialization/array.hpp>
-#include <boost/serialization/string.hpp>
-#include <boost/serialization/utility.hpp>
-#include <boost/serialization/vector.hpp>
-
 #include <cmath>
-#include <cstdint>
-#include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <sstream>
 
 namespace rbc_ifem
 {
-  namespace
-  {
-    /// Everything in a checkpoint: the run's parameters and record, the
-    /// fluid, the membranes.
-    struct Checkpoint
-    {
-      unsigned int                n_ranks = 0;
-      std::string                 parameters; ///< the run's parameters.prm
-      RunRecord                   record;
-      FluidState                  fluid;
-      std::vector<Vector<double>> positions;
-
-      template <class Archive>
-      void
-      serialize(Archive &archive, const unsigned int)
-      {
-        archive &n_ranks &parameters &record &fluid &positions;
-      }
-    };
-
-    /**
-     * The file's first lines: what it is, the format of what follows
-     * (raised whenever what a checkpoint holds changes, so that an old
-     * checkpoint is refused by name, not misread), and the payload's size
-     * and CRC-32, so that a truncated or damaged file is refused.
-     */
-    const std::string  checkpoint_title          = "rbc-ifem checkpoint";
-    constexpr unsigned checkpoint_current_format = 20261204;
-
-    std::uint32_t
-    crc32(const std::string &bytes)
-    {
-      boost::crc_32_type crc;
-      crc.process_bytes(bytes.data(), bytes.size());
-      return crc.checksum();
-    }
-
-    /// The checkpoint file's text: its header lines, then @p payload.
-    std::string
-    checkpoint_file(const std::string &payload)
-    {
-      std::ostringstream file;
-      file << checkpoint_title << "\nformat " << checkpoint_current_format
-           << "\nbytes " << payload.size() << "\ncrc32 " << crc32(payload)
-           << '\n'
-           << payload;
-      return file.str();
-    }
-
-    /**
-     * The payload of the checkpoint file @p path, checked; throws the
-     * reason it cannot be used (not a checkpoint, another format,
-     * truncated, damaged) as a std::runtime_error.
-     */
-    std::string
-    checkpoint_payload(const std::string &path)
-    {
-      std::ifstream in(path, std::ios::binary);
-      std::string   title, format_word, bytes_word, crc_word;
-      unsigned long format = 0, bytes = 0;
-      std::uint32_t crc = 0;
-      std::getline(in, title);
-      if (title != checkpoint_title)
-        throw std::runtime_error("it is not an rbc-ifem checkpoint");
-      in >> format_word >> format >> bytes_word >> bytes >> crc_word >> crc;
-      in.get();
-      if (!in || format_word != "format" || bytes_word != "bytes" ||
-          crc_word != "crc32")
-        throw std::runtime_error("its header is damaged");
-      if (format != checkpoint_current_format)
-        throw std::runtime_error("it has the format " + std::to_string(format) +
-                                 "; this version of rbc-ifem reads " +
-                                 std::to_string(checkpoint_current_format));
-      std::string payload(bytes, '\0');
-      in.read(payload.data(), bytes);
-      if (static_cast<unsigned long>(in.gcount()) != bytes)
-        throw std::runtime_error(
-          "it is truncated: " + std::to_string(in.gcount()) + " of its " +
-          std::to_string(bytes) + " bytes are there");
-      if (crc32(payload) != crc)
-        throw std::runtime_error(
-          "it is damaged: the checksum of its contents does not match");
-      return payload;
-    }
-
-    /// The membranes @p surfaces as the uptake solve takes them.
-    std::vector<const Triangulation<2, 3> *>
-    pointers_to(
-      const std::vector<std::unique_ptr<Triangulation<2, 3>>> &surfaces)
-    {
-      std::vector<const Triangulation<2, 3> *> pointers;
-      for (const auto &surface : surfaces)
-        pointers.push_back(surface.get());
-      return pointers;
-    }
-
-    /// The parameters a resumed run may change: how long it runs and what
-    /// it reports, not what it computes.
-    bool
-    may_change_on_resume(const std::string &name)
-    {
-      return name == "Output directory" || name == "Time/Number of steps" ||
-             name == "Time/Output interval" ||
-             name == "Immersed cells/Resume" ||
-             name == "Immersed cells/Checkpoint interval" ||
-             name == "Immersed cells/Progress interval";
-    }
-  } // namespace
-
   IFEMSimulation::IFEMSimulation(const Parameters  &parameters,
                                  const std::string &parameter_file_text,
                                  const FlowDomain  &domain,
@@ -157,22 +35,18 @@ namespace rbc_ifem
             parameters.time.plasma_time_step(),
             timer)
     , cells(domain.placements, parameters.cells, parameters.membrane)
+    , uptake(parameters.geometry,
+             parameters.mesh,
+             parameters.diffusion,
+             communicator,
+             timer)
+    , record(cells.size(), parameters.diffusion.uptake == CellUptake::reaction)
+    , run_report(this->parameters, this->domain, communicator)
+    , checkpoint(parameters.output_directory)
+    , schedule(parameters.time, parameters.immersed)
   {
     add_cell_forces();
     contacts = cells.size() > 1 || domain.wall_radius.has_value();
-
-    record.flow.set_header(
-      "time,flow_rate,pressure_drop,max_velocity,divergence_l2,"
-      "frame_velocity,newton_iterations,linear_iterations,held_force_x,"
-      "held_force_y,held_force_z,lab_flow_rate");
-    record.cells.set_header(
-      "time,cell,x,y,z,area,volume,axial_length,max_radius,deformation_index,"
-      "frame_x,volume_change,area_change,taylor_deformation,inclination,"
-      "min_gap,wall_gap,local_area_change");
-    record.dm.set_header(
-      dm_header(cells.size(),
-                parameters.diffusion.uptake == CellUptake::reaction));
-    record.cell_files.resize(cells.size());
   }
 
   void
@@ -284,7 +158,7 @@ namespace rbc_ifem
     pcout << "  fluid mesh: " << triangulation.n_global_active_cells()
           << " cells, " << fluid.n_dofs() << " DoFs; "
           << multigrid_levels_text(fluid) << std::endl;
-    report_startup(stable);
+    run_report.startup(cells, stable, mesh_size, time_step);
     if (parameters.immersed.diffusion_interval > 0)
       check_uptake_input();
     if (parameters.immersed.resume)
@@ -293,68 +167,6 @@ namespace rbc_ifem
         pcout << "  resumed from the checkpoint at step " << record.step
               << ", t = " << record.time << " s" << std::endl;
       }
-  }
-
-  void
-  IFEMSimulation::report_startup(const CouplingTimeStepLimit &stable) const
-  {
-    const FluidParameters    &f           = parameters.fluid;
-    const MembraneParameters &m           = parameters.membrane;
-    const double              speed       = domain.velocity_scale;
-    const double              length      = domain.length_scale;
-    const double              spacing     = cells.point_spacing();
-    const double              stable_step = stable.limit;
-
-    pcout << "  cells: " << cells.size() << ", " << cells.n_points()
-          << " membrane points, spacing up to " << spacing
-          << " µm; fluid mesh size at the cells h = " << mesh_size << " µm\n"
-          << "  Reynolds number ρ U L / μ = "
-          << f.density * speed * length / f.viscosity
-          << ", capillary number μ U / G = "
-          << f.viscosity * speed / m.shear_modulus
-          << " (U = " << domain.velocity_symbol
-          << ", L = " << domain.length_symbol << ")\n"
-          << "  explicit-coupling time step limit ≈ " << stable_step
-          << " s (in-plane " << stable.in_plane << " s, bending "
-          << stable.bending
-          << " s); explicit runs stay stable below about 0.7 of it "
-             "(doc/ifem.md); coupling "
-          << name_of(parameters.immersed.coupling, coupling_scheme_names())
-          << ", Δt = " << time_step << " s ("
-          << (parameters.time.automatic_time_step() ? "Time step = auto, " : "")
-          << time_step / stable_step << " of the estimate)" << std::endl;
-    // Measured (doc/ifem.md): 0.71 of the estimate stable over the default
-    // run, 0.83 diverged after 112 steps.
-    if (parameters.immersed.coupling == CouplingScheme::explicit_forces &&
-        time_step > 0.75 * stable_step)
-      pcout << "  WARNING: Time/Time step = " << time_step << " s is "
-            << time_step / stable_step << " of the explicit-coupling estimate "
-            << stable_step
-            << " s; runs stay stable below about 0.7 of it: set it to at "
-               "most "
-            << 0.7 * stable_step
-            << " s, or to auto, or set Immersed cells/Coupling = "
-               "semi-implicit."
-            << std::endl;
-    const InteractionParameters &contact = parameters.interactions;
-    if (cells.size() > 1 && contact.repulsion_pressure > 0. &&
-        contact.repulsion_range < spacing)
-      pcout << "  WARNING: Cell interactions/Repulsion range = "
-            << contact.repulsion_range
-            << " µm is shorter than the membrane point spacing " << spacing
-            << " µm: a point of one cell may slip between the points of "
-               "another. Raise the range or Cells/Surface refinements."
-            << std::endl;
-    if (spacing > 0.5 * mesh_size)
-      pcout
-        << "  WARNING: the membrane point spacing " << spacing
-        << " µm exceeds half the fluid mesh size at the cells, h/2 = "
-        << 0.5 * mesh_size
-        << " µm (the paper's rule). To follow it, raise Cells/Surface "
-           "refinements and Mesh/Diffusion band refinements by one each and "
-           "set Time/Time step = auto (closer points lower the explicit-"
-           "coupling estimate), or lower Mesh/Fluid band refinements."
-        << std::endl;
   }
 
   void
@@ -409,28 +221,7 @@ namespace rbc_ifem
       TimerOutput::Scope scope(timer, "coupling: interpolate");
       velocities = coupling->interpolate(fluid.solution().block(0));
     }
-    double largest_move = 0., mean_axial_velocity = 0.;
-    for (const Tensor<1, 3> &v : velocities)
-      {
-        largest_move = std::max(largest_move, v.norm() * dt);
-        mean_axial_velocity += v[0] / velocities.size();
-      }
-    if (!(largest_move <=
-          parameters.immersed.max_step_displacement * mesh_size))
-      {
-        std::ostringstream why;
-        why << "a membrane point moved " << largest_move
-            << " µm in one step, more than "
-            << "Immersed cells/Maximum step displacement = "
-            << parameters.immersed.max_step_displacement
-            << " of the fluid mesh size " << mesh_size << " µm: the "
-            << name_of(parameters.immersed.coupling, coupling_scheme_names())
-            << " coupling is unstable or the step too long; reduce Time/Time "
-               "step = "
-            << dt << " s";
-        stop(why.str(), last_good);
-      }
-
+    check_displacement(velocities, last_good);
     cells.move(velocities, dt);
     if (contacts)
       check_gaps(last_good);
@@ -450,53 +241,62 @@ namespace rbc_ifem
     record.time += dt;
     ++record.step;
     if (parameters.immersed.follow_cells)
-      fluid.set_frame_velocity(fluid.get_frame_velocity() +
-                               mean_axial_velocity);
+      {
+        double mean_axial_velocity = 0.;
+        for (const Tensor<1, 3> &v : velocities)
+          mean_axial_velocity += v[0] / velocities.size();
+        fluid.set_frame_velocity(fluid.get_frame_velocity() +
+                                 mean_axial_velocity);
+      }
     return report;
+  }
+
+  void
+  IFEMSimulation::check_displacement(
+    const std::vector<Tensor<1, 3>>   &velocities,
+    const std::vector<Vector<double>> &last_good)
+  {
+    double largest_move = 0.;
+    for (const Tensor<1, 3> &v : velocities)
+      largest_move = std::max(largest_move, v.norm() * time_step);
+    if (largest_move <= parameters.immersed.max_step_displacement * mesh_size)
+      return;
+    std::ostringstream why;
+    why << "a membrane point moved " << largest_move
+        << " µm in one step, more than "
+        << "Immersed cells/Maximum step displacement = "
+        << parameters.immersed.max_step_displacement
+        << " of the fluid mesh size " << mesh_size << " µm: the "
+        << name_of(parameters.immersed.coupling, coupling_scheme_names())
+        << " coupling is unstable or the step too long; reduce Time/Time "
+           "step = "
+        << time_step << " s";
+    stop(why.str(), last_good);
   }
 
   void
   IFEMSimulation::check_uptake_input() const
   {
     TimerOutput::Scope scope(timer, "diffusion: input check");
-    const auto         surfaces = cells.current_surfaces();
-    const auto         mapping  = cells.surface_mapping(surfaces);
-    check_uptake_meshes(parameters.geometry,
-                        parameters.mesh,
-                        parameters.diffusion,
-                        pointers_to(surfaces),
-                        mapping,
-                        parameters.mesh.diffusion_band_refinements,
-                        communicator,
-                        timer);
+    uptake.check(cells.membrane_surfaces());
   }
 
   double
   IFEMSimulation::solve_uptake(const unsigned int counter)
   {
-    const auto         surfaces  = cells.current_surfaces();
-    const auto         mapping   = cells.surface_mapping(surfaces);
     const std::string &directory = parameters.output_directory;
-    Uptake             uptake;
+    Uptake             now;
     try
       {
-        uptake =
-          rbc_ifem::solve_uptake(parameters.geometry,
-                                 parameters.mesh,
-                                 parameters.diffusion,
-                                 pointers_to(surfaces),
-                                 mapping,
-                                 parameters.mesh.diffusion_band_refinements,
-                                 communicator,
-                                 timer,
-                                 [&](const DiffusionSolver &diffusion) {
-                                   record.uptake_fields.write(diffusion,
-                                                              directory,
-                                                              record.time,
-                                                              counter,
-                                                              communicator,
-                                                              frame_data());
-                                 });
+        now = uptake.solve(cells.membrane_surfaces(),
+                           [&](const DiffusionSolver &diffusion) {
+                             record.uptake_fields.write(diffusion,
+                                                        directory,
+                                                        record.time,
+                                                        counter,
+                                                        communicator,
+                                                        frame_data());
+                           });
       }
     catch (const std::runtime_error &e)
       {
@@ -510,15 +310,15 @@ namespace rbc_ifem
              cells.positions(),
              true);
       }
-    record.dm.add_row(dm_row(record.time, uptake));
-    record.dm_history.emplace_back(record.time, uptake.dm_total);
+    record.dm.add_row(dm_row(record.time, now));
+    record.dm_history.emplace_back(record.time, now.dm_total);
     if (!observers.empty())
       {
         const double gap = smallest_cell_gap();
         for (RunObserver *observer : observers)
-          observer->record_uptake(record.time, uptake, gap);
+          observer->record_uptake(record.time, now, gap);
       }
-    return uptake.dm_total;
+    return now.dm_total;
   }
 
   void
@@ -670,104 +470,29 @@ namespace rbc_ifem
   IFEMSimulation::write_checkpoint() const
   {
     TimerOutput::Scope scope(timer, "checkpoint");
-    Checkpoint         checkpoint;
-    checkpoint.n_ranks    = Utilities::MPI::n_mpi_processes(communicator);
-    checkpoint.parameters = parameter_file_text;
-    checkpoint.record     = record;
-    checkpoint.fluid      = fluid.state();
-    checkpoint.positions  = cells.positions();
-    if (Utilities::MPI::this_mpi_process(communicator) != 0)
-      return;
-    std::ostringstream payload;
-    {
-      boost::archive::binary_oarchive archive(payload);
-      archive << checkpoint;
-    }
-    // The last two: the one before stays as checkpoint_previous.bin.
-    const std::string path = parameters.output_directory + "/checkpoint.bin";
-    if (std::filesystem::exists(path))
-      std::filesystem::rename(path,
-                              parameters.output_directory +
-                                "/checkpoint_previous.bin");
-    const std::string file = checkpoint_file(payload.str());
-    write_file_atomically(path, [&](std::ostream &out) { out << file; });
+    CheckpointState    state;
+    state.n_ranks    = Utilities::MPI::n_mpi_processes(communicator);
+    state.parameters = parameter_file_text;
+    state.record     = record;
+    state.fluid      = fluid.state();
+    state.positions  = cells.positions();
+    checkpoint.write(state, communicator);
   }
 
   void
   IFEMSimulation::read_checkpoint()
   {
-    const std::string path = parameters.output_directory + "/checkpoint.bin";
-    std::ifstream     in(path, std::ios::binary);
-    if (!in)
-      throw InputError(
-        "Immersed cells/Resume",
-        "true",
-        "it needs the checkpoint " + path +
-          " of an earlier run, which does not exist or cannot be read.");
-    Checkpoint checkpoint;
-    try
-      {
-        std::istringstream              payload(checkpoint_payload(path));
-        boost::archive::binary_iarchive archive(payload);
-        archive >> checkpoint;
-      }
-    catch (const std::exception &e)
-      {
-        throw InputError("Immersed cells/Resume",
-                         "true",
-                         "the checkpoint " + path +
-                           " cannot be used: " + e.what() +
-                           ". The one before it, if the run wrote two, is "
-                           "checkpoint_previous.bin: rename it to "
-                           "checkpoint.bin to resume from there.");
-      }
-    check_resumed_parameters(checkpoint.parameters, path);
-    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
-    if (checkpoint.n_ranks != n_ranks ||
-        checkpoint.fluid.solution.size() != fluid.n_dofs() ||
-        checkpoint.positions.size() != cells.size() ||
-        checkpoint.positions[0].size() != cells.positions()[0].size())
-      throw InputError("Immersed cells/Resume",
-                       "true",
-                       "the checkpoint " + path + " comes from a run on " +
-                         std::to_string(checkpoint.n_ranks) + " rank(s) with " +
-                         std::to_string(checkpoint.fluid.solution.size()) +
-                         " fluid DoFs; this run has " +
-                         std::to_string(n_ranks) + " rank(s) and " +
-                         std::to_string(fluid.n_dofs()) +
-                         ": resume on the same number of ranks.");
-    if (checkpoint.record.step >= parameters.time.n_steps)
-      throw InputError("Time/Number of steps",
-                       std::to_string(parameters.time.n_steps),
-                       "a resumed run must go beyond the checkpoint's step " +
-                         std::to_string(checkpoint.record.step) + ".");
-    record = checkpoint.record;
-    fluid.set_state(checkpoint.fluid);
-    cells.set_positions(checkpoint.positions);
+    const CheckpointState state =
+      checkpoint.read({parameter_file_text,
+                       Utilities::MPI::n_mpi_processes(communicator),
+                       fluid.n_dofs(),
+                       cells.size(),
+                       cells.positions()[0].size(),
+                       parameters.time.n_steps});
+    record = state.record;
+    fluid.set_state(state.fluid);
+    cells.set_positions(state.positions);
     coupling->place(cells.points());
-  }
-
-  void
-  IFEMSimulation::check_resumed_parameters(const std::string &written,
-                                           const std::string &path) const
-  {
-    const auto before = parameter_values(written);
-    for (const auto &[name, value] : parameter_values(parameter_file_text))
-      {
-        const auto old = before.find(name);
-        if (old != before.end() && old->second != value &&
-            !may_change_on_resume(name))
-          throw InputError(
-            name,
-            value,
-            "the checkpoint " + path + " was written by a run with " + name +
-              " = " + old->second +
-              ". A resumed run computes what the run that "
-              "wrote it did: only Time/Number of steps, "
-              "Time/Output interval, Immersed cells/Resume, "
-              "Checkpoint interval and Progress interval may "
-              "change (and Output directory, for a copied run).");
-      }
   }
 
   void
@@ -808,125 +533,81 @@ namespace rbc_ifem
   }
 
   void
-  IFEMSimulation::report_summary(const unsigned int n_run,
-                                 const double       wall_seconds) const
-  {
-    pcout << "  summary: t = " << record.time << " s, " << n_run << " steps in "
-          << duration_text(wall_seconds) << ", "
-          << wall_seconds / std::max(1u, n_run) << " s per step" << std::endl;
-    if (!record.dm_history.empty())
-      {
-        // 1 µm³/s = 6e-11 mL/min, and 1 mmHg = 1.000000142 Torr.
-        const double to_ml_min_mmhg    = 60e-12 * 1.000000142;
-        const auto [first_time, first] = record.dm_history.front();
-        const auto [last_time, last]   = record.dm_history.back();
-        if (record.dm_history.size() == 1)
-          pcout << "  DM at t = " << first_time << " s " << first
-                << " µm³/(s Torr), " << first * to_ml_min_mmhg
-                << " mL/(min mmHg)" << std::endl;
-        else
-          pcout << "  DM at t = " << first_time << " s " << first
-                << ", at t = " << last_time << " s " << last
-                << " µm³/(s Torr) (" << std::showpos
-                << 100. * (last / first - 1.) << std::noshowpos
-                << "%); in mL/(min mmHg) " << first * to_ml_min_mmhg << " and "
-                << last * to_ml_min_mmhg << std::endl;
-      }
-    const std::vector<CellShape> shapes = cells.shapes();
-    double deformation = 0., volume_drift = 0., area_drift = 0.,
-           local_area = 0.;
-    for (unsigned int c = 0; c < shapes.size(); ++c)
-      {
-        local_area = std::max(local_area, shapes[c].largest_local_area_change);
-        deformation += shapes[c].deformation_index / shapes.size();
-        const double dv = shapes[c].volume / cells.reference_volume(c) - 1.;
-        const double da = shapes[c].area / cells.reference_area(c) - 1.;
-        volume_drift =
-          std::abs(dv) > std::abs(volume_drift) ? dv : volume_drift;
-        area_drift = std::abs(da) > std::abs(area_drift) ? da : area_drift;
-      }
-    pcout << "  cells at the end: deformation index " << deformation
-          << (shapes.size() > 1 ? " (mean)" : "") << ", volume change "
-          << 100. * volume_drift << "%, area change " << 100. * area_drift
-          << "%" << (shapes.size() > 1 ? " (the largest over the cells)" : "")
-          << ", largest local area change " << 100. * local_area
-          << "% (the cell field area_change of cell_C.pvd)" << std::endl;
-  }
-
-  void
   IFEMSimulation::run()
   {
-    const ImmersedParameters &immersed = parameters.immersed;
-    const TimeParameters     &time     = parameters.time;
-    const auto due = [](const unsigned int step, const unsigned int interval) {
-      return interval > 0 && step % interval == 0;
-    };
     if (record.step == 0)
-      {
-        record_shapes();
-        if (immersed.diffusion_interval > 0)
-          {
-            const double dm = solve_uptake(0);
-            pcout << "  t = 0 s: DM " << dm << " µm³/(s Torr)" << std::endl;
-          }
-        write_fields();
-        write_tables();
-      }
-
+      record_start();
     const InterruptionGuard interruption;
     Timer                   clock;
     const unsigned int      first_step = record.step;
-    const double            end_time   = time.n_steps * time_step;
-    while (record.step < time.n_steps)
+    while (record.step < parameters.time.n_steps)
       {
-        const StepReport report = advance();
+        const StepReport stepped = advance();
         if (const int signal = interruption.received(communicator))
           save_and_stop(signal);
-        const unsigned int step      = record.step;
-        const bool         last      = step == time.n_steps;
-        const bool         diffusion = due(step, immersed.diffusion_interval);
-        const bool         output    = due(step, time.output_interval) || last;
-        if (!(diffusion || output || due(step, immersed.progress_interval) ||
-              due(step, immersed.checkpoint_interval)))
-          continue;
-
-        record_flow(report);
-        std::ostringstream progress;
-        progress << "  step " << step << " of " << time.n_steps
-                 << ", t = " << record.time << " of " << end_time
-                 << " s: " << report.linear_iterations
-                 << " FGMRES iterations, frame velocity "
-                 << fluid.get_frame_velocity() << " µm/s";
-        if (diffusion)
-          progress << ", DM "
-                   << solve_uptake(step / immersed.diffusion_interval)
-                   << " µm³/(s Torr)";
-        const std::vector<CellShape> shapes =
-          output ? record_shapes() : cells.shapes();
-        if (cells.size() > 1)
-          progress << ", smallest gap between cells " << smallest_cell_gap()
-                   << " µm";
-        progress << "; cell 0: volume change "
-                 << shapes[0].volume / cells.reference_volume(0) - 1.
-                 << ", deformation index " << shapes[0].deformation_index;
-        for (const RunObserver *observer : observers)
-          progress << observer->progress(shapes);
-        if (output)
-          {
-            write_fields();
-            write_tables();
-          }
-        pcout << progress.str() << "  "
-              << time_left_text(clock.wall_time(),
-                                step - first_step,
-                                time.n_steps - step)
-              << std::endl;
-        if (due(step, immersed.checkpoint_interval) ||
-            (last && immersed.checkpoint_interval > 0))
-          write_checkpoint();
+        const StepActions due = schedule.actions(record.step);
+        if (due.any())
+          do_what_is_due(due, stepped, clock, first_step);
       }
     write_tables();
-    report_summary(record.step - first_step, clock.wall_time());
+    run_report.summary(record,
+                       cells,
+                       record.step - first_step,
+                       clock.wall_time());
     timer.print_summary();
+  }
+
+  void
+  IFEMSimulation::record_start()
+  {
+    record_shapes();
+    if (parameters.immersed.diffusion_interval > 0)
+      pcout << "  t = 0 s: DM " << solve_uptake(0) << " µm³/(s Torr)"
+            << std::endl;
+    write_fields();
+    write_tables();
+  }
+
+  void
+  IFEMSimulation::do_what_is_due(const StepActions &due,
+                                 const StepReport  &stepped,
+                                 const Timer       &clock,
+                                 const unsigned int first_step)
+  {
+    const TimeParameters &time = parameters.time;
+    const unsigned int    step = record.step;
+    record_flow(stepped);
+    std::ostringstream progress;
+    progress << "  step " << step << " of " << time.n_steps
+             << ", t = " << record.time << " of " << time.n_steps * time_step
+             << " s: " << stepped.linear_iterations
+             << " FGMRES iterations, frame velocity "
+             << fluid.get_frame_velocity() << " µm/s";
+    if (due.diffusion)
+      progress << ", DM "
+               << solve_uptake(step / parameters.immersed.diffusion_interval)
+               << " µm³/(s Torr)";
+    const std::vector<CellShape> shapes =
+      due.output ? record_shapes() : cells.shapes();
+    if (cells.size() > 1)
+      progress << ", smallest gap between cells " << smallest_cell_gap()
+               << " µm";
+    progress << "; cell 0: volume change "
+             << shapes[0].volume / cells.reference_volume(0) - 1.
+             << ", deformation index " << shapes[0].deformation_index;
+    for (const RunObserver *observer : observers)
+      progress << observer->progress(shapes);
+    if (due.output)
+      {
+        write_fields();
+        write_tables();
+      }
+    pcout << progress.str() << "  "
+          << time_left_text(clock.wall_time(),
+                            step - first_step,
+                            time.n_steps - step)
+          << std::endl;
+    if (due.checkpoint)
+      write_checkpoint();
   }
 } // namespace rbc_ifem

@@ -79,6 +79,15 @@ namespace rbc_ifem
   ImmersedParameters::add_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Immersed cells");
+    add_coupling_parameters(prm);
+    add_schedule_parameters(prm);
+    add_force_parameters(prm);
+    prm.leave_subsection();
+  }
+
+  void
+  ImmersedParameters::add_coupling_parameters(ParameterHandler &prm)
+  {
     add_parameter(prm,
                   "Enabled",
                   enabled,
@@ -109,6 +118,11 @@ namespace rbc_ifem
                   "stays stable at many times the limit; each FGMRES "
                   "iteration then also interpolates, applies K and spreads "
                   "(doc/ifem.md).");
+  }
+
+  void
+  ImmersedParameters::add_schedule_parameters(ParameterHandler &prm)
+  {
     add_parameter(prm,
                   "Diffusion interval",
                   diffusion_interval,
@@ -136,6 +150,11 @@ namespace rbc_ifem
                   "cell 0) every this many steps, and at every diffusion "
                   "solve (with DM) and output.",
                   Patterns::Integer(1));
+  }
+
+  void
+  ImmersedParameters::add_force_parameters(ParameterHandler &prm)
+  {
     add_parameter(prm,
                   "Maximum step displacement",
                   max_step_displacement,
@@ -179,7 +198,6 @@ namespace rbc_ifem
                                  0,
                                  Patterns::List::max_int_value,
                                  ";"));
-    prm.leave_subsection();
   }
 
   std::vector<Tensor<1, 3>>

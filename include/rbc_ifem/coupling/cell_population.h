@@ -4,8 +4,8 @@
 #include <rbc_ifem/coupling/cell_force.h>
 #include <rbc_ifem/geometry/cell_membranes.h>
 #include <rbc_ifem/geometry/cell_placement.h>
+#include <rbc_ifem/geometry/membrane_surfaces.h>
 #include <rbc_ifem/geometry/parameters.h>
-#include <rbc_ifem/membrane/deformed_surface_mapping.h>
 #include <rbc_ifem/membrane/membrane.h>
 #include <rbc_ifem/membrane/parameters.h>
 
@@ -143,13 +143,12 @@ namespace rbc_ifem
     current_surfaces() const;
 
     /**
-     * The mapping that curves @p surfaces, the current_surfaces(), as the
-     * uptake solve sees them: the reference shape plus the displacement
-     * (DeformedSurfaceMapping).
+     * The current surfaces as the uptake solve sees them: the
+     * current_surfaces(), curved by the reference shape plus the
+     * displacement (DeformedSurfaceMapping); the view holds both.
      */
-    DeformedSurfaceMapping
-    surface_mapping(
-      const std::vector<std::unique_ptr<Triangulation<2, 3>>> &surfaces) const;
+    MembraneSurfaces
+    membrane_surfaces() const;
 
     /**
      * The largest distance between neighbouring membrane points (the

@@ -4,6 +4,7 @@
 #include <rbc_ifem/base/field_data.h>
 #include <rbc_ifem/diffusion/diffusion_solver.h>
 #include <rbc_ifem/diffusion/parameters.h>
+#include <rbc_ifem/geometry/membrane_surfaces.h>
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/timer.h>
@@ -101,14 +102,14 @@ namespace rbc_ifem
     /**
      * Distribute the DoFs of P on @p mesh and of λ on @p membranes, locate
      * the membranes' quadrature points in @p mesh, build the sparsity
-     * patterns. Throws InputError if a membrane leaves the mesh. @p mesh
+     * patterns. Throws InputError if a membrane leaves the mesh,
+     * MembranesFinerThanMesh if the membranes are too fine for it. @p mesh
      * must be a parallel::shared::Triangulation: every rank locates every
-     * membrane point in it.
+     * membrane point in it. Both must outlive this object.
      */
     void
-    setup(const parallel::TriangulationBase<3>           &mesh,
-          const std::vector<const Triangulation<2, 3> *> &membranes,
-          const MappingQ<2, 3> &membrane_mapping) override;
+    setup(const parallel::TriangulationBase<3> &mesh,
+          const MembraneSurfaces               &membranes);
 
     void
     assemble() override;
@@ -116,6 +117,10 @@ namespace rbc_ifem
     /// Solve for P and λ; throws SolverFailure if FGMRES does not converge.
     void
     solve() override;
+
+    /// DM = total_flow() / P_A [µm³ s⁻¹ Torr⁻¹].
+    double
+    dm_total() const;
 
     types::global_dof_index
     n_pressure_dofs() const;
@@ -140,8 +145,17 @@ namespace rbc_ifem
 
     void
     setup_multipliers();
+    /// The quadrature points of the multipliers' cells (wrapped into a
+    /// periodic segment), their JxW and DoFs stored in coupling.
+    std::vector<Point<3>>
+    membrane_quadrature_points();
+    /// Find the volume cell of every membrane quadrature point.
     void
     locate_membrane_points();
+    /// Throw MembranesFinerThanMesh if the multipliers' cells are finer
+    /// than the volume mesh around them; set the constraint's scale.
+    void
+    check_inf_sup();
     void
     setup_matrices();
     void

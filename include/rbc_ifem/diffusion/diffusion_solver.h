@@ -25,30 +25,21 @@ namespace rbc_ifem
 
   /**
    * A steady CO uptake solve, the paper's Section 3.2: -∇·(αD∇P) = 0 in
-   * the diffusion mesh, P = P_A on its alveolar surface, P = 0 on every red
-   * cell membrane. The membranes do not conform to the mesh; how P = 0 is
-   * imposed on them is what the methods differ in (Diffusion/Method):
-   * CODiffusion (a Lagrange multiplier) and CutCellDiffusion (cut cells and
-   * Nitsche). What comes out is the same: the CO flow into each membrane,
-   * the flow through the alveolar surface (which must equal their sum), the
-   * P field and the flux map on the membranes.
+   * the diffusion mesh, P = P_A on its alveolar surface, and at the red
+   * cell membranes either P = 0 (the membrane sink, whose flow per P_A is
+   * DM: CODiffusion with a Lagrange multiplier, CutCellDiffusion on cut
+   * cells) or CO going on into the cells and bound there (CutCellReaction,
+   * whose flow per P_A is DL). The membranes do not conform to the mesh.
+   * What comes out is the same for every problem: the CO flow into each
+   * membrane, the flow through the alveolar surface (which must equal their
+   * sum), the P field and the flux map on the membranes. Each problem sets
+   * itself up from what it needs (a mesh and the membranes, or the cut-cell
+   * geometry), then assemble() and solve().
    */
   class DiffusionSolver
   {
   public:
     virtual ~DiffusionSolver() = default;
-
-    /**
-     * Distribute the DoFs on @p mesh, find the membranes @p membranes
-     * (curved by @p membrane_mapping) in it, build the sparsity patterns.
-     * Throws InputError if a membrane leaves the mesh. Each method says
-     * which parallel meshes it takes: the multiplier a shared one, cut
-     * cells a shared or a fully distributed one.
-     */
-    virtual void
-    setup(const parallel::TriangulationBase<3>           &mesh,
-          const std::vector<const Triangulation<2, 3> *> &membranes,
-          const MappingQ<2, 3>                           &membrane_mapping) = 0;
 
     /// Assemble the matrices and build the preconditioner.
     virtual void
@@ -68,10 +59,6 @@ namespace rbc_ifem
     /// Total CO flow into all membranes [µm³ s⁻¹].
     double
     total_flow() const;
-
-    /// DM = total flow / P_A [µm³ s⁻¹ Torr⁻¹].
-    double
-    dm_total() const;
 
     /**
      * CO flow out through the pressure boundary, computed from the residual
@@ -112,6 +99,11 @@ namespace rbc_ifem
 
   protected:
     explicit DiffusionSolver(const double alveolar_pressure);
+
+    /// total_flow() / P_A [µm³ s⁻¹ Torr⁻¹]: DM of a membrane sink, DL of
+    /// the reaction; each problem names it so.
+    double
+    flow_per_pressure() const;
 
     /**
      * The flow through boundary @p boundary: Σ over its DoFs j of

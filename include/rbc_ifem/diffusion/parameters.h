@@ -97,6 +97,15 @@ namespace rbc_ifem
 
     void
     add_parameters(ParameterHandler &prm);
+    /// The entries of the materials: P_A, and D and α of each layer.
+    void
+    add_material_parameters(ParameterHandler &prm);
+    /// The entries of the discretisation: method, degree and penalties.
+    void
+    add_method_parameters(ParameterHandler &prm);
+    /// The entries of the linear solver.
+    void
+    add_solver_parameters(ParameterHandler &prm);
     /// The entries of the reaction inside the cells (Uptake and after).
     void
     add_reaction_parameters(ParameterHandler &prm);

@@ -2,16 +2,10 @@
 #define rbc_ifem_diffusion_uptake_h
 
 #include <rbc_ifem/base/field_data.h>
-#include <rbc_ifem/diffusion/parameters.h>
-#include <rbc_ifem/geometry/parameters.h>
 
 #include <deal.II/base/mpi.h>
-#include <deal.II/base/timer.h>
 #include <deal.II/base/types.h>
-#include <deal.II/fe/mapping_q.h>
-#include <deal.II/grid/tria.h>
 
-#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -22,7 +16,7 @@ namespace rbc_ifem
 
   class DiffusionSolver;
 
-  /// What one CO uptake solve gives.
+  /// What one CO uptake solve gives (UptakeSolver).
   struct Uptake
   {
     double              dm_total = 0.; ///< [µm³ s⁻¹ Torr⁻¹]
@@ -42,68 +36,6 @@ namespace rbc_ifem
     unsigned int            iterations           = 0;
     double                  seconds = 0.; ///< wall time of the whole solve
   };
-
-  /**
-   * What solve_uptake() does before it assembles, to reject the input it
-   * would reject (a membrane outside the mesh, a diffusion mesh too coarse
-   * for the membranes: InputError) before a run writes anything.
-   */
-  void
-  check_uptake_meshes(const GeometryParameters  &geometry,
-                      const MeshParameters      &mesh_parameters,
-                      const DiffusionParameters &d,
-                      const std::vector<const Triangulation<2, 3> *> &surfaces,
-                      const MappingQ<2, 3>                           &mapping,
-                      const unsigned int band_refinements,
-                      const MPI_Comm     communicator,
-                      TimerOutput       &timer);
-
-  /**
-   * The DM building block: the CO uptake of the membranes @p surfaces
-   * (curved by @p mapping) in the capillary of @p geometry, on its diffusion
-   * mesh (Mesh/Diffusion global refinements) refined @p band_refinements
-   * times within Mesh/Band width of their vertices, by the solver of
-   * Diffusion/Method (DiffusionSolver); the mesh is fully distributed for
-   * cut cells (no rank but the first ever holds all of it), shared for the
-   * multiplier; then
-   * @p write_fields, if given, writes what the caller wants of the solve.
-   * With Diffusion/Uptake = reaction a second solve on the same mesh, with
-   * the reaction inside the cells (CutCellDiffusion::react_inside_cells()),
-   * gives DL, and it is the one @p write_fields is given.
-   * Throws SolverFailure if the solve fails.
-   */
-  Uptake
-  solve_uptake(
-    const GeometryParameters                           &geometry,
-    const MeshParameters                               &mesh,
-    const DiffusionParameters                          &diffusion,
-    const std::vector<const Triangulation<2, 3> *>     &surfaces,
-    const MappingQ<2, 3>                               &mapping,
-    const unsigned int                                  band_refinements,
-    const MPI_Comm                                      communicator,
-    TimerOutput                                        &timer,
-    const std::function<void(const DiffusionSolver &)> &write_fields = {});
-
-  /**
-   * What solve_uptake() gives with Diffusion/Uptake = reaction, for each
-   * binding rate k of @p rates [s⁻¹ Torr⁻¹, DiffusionParameters::
-   * reaction_rate()] in turn, on one uptake mesh: the mesh, the distance to
-   * the membranes and DM are computed once. Element i has DL for rates[i]
-   * (@p rates not empty), and as its seconds the wall time since element
-   * i − 1 (element 0: since the start, the mesh and DM included). Needs
-   * Diffusion/Method = cut cell.
-   */
-  std::vector<Uptake>
-  solve_uptake_for_rates(
-    const GeometryParameters                       &geometry,
-    const MeshParameters                           &mesh,
-    const DiffusionParameters                      &diffusion,
-    const std::vector<const Triangulation<2, 3> *> &surfaces,
-    const MappingQ<2, 3>                           &mapping,
-    const unsigned int                              band_refinements,
-    const std::vector<double>                      &rates,
-    const MPI_Comm                                  communicator,
-    TimerOutput                                    &timer);
 
   /// The header of dm.csv for @p n_cells cells: time,dm_total,dm_cell_0,...
   /// and, with @p reaction, dl_total,dl_cell_0,...

@@ -20,10 +20,7 @@ namespace rbc_ifem
   class CellFlowExperiment : public Experiment
   {
   public:
-    CellFlowExperiment(const std::string      &name,
-                       const Parameters       &parameters,
-                       const ParameterHandler &prm,
-                       const MPI_Comm          communicator);
+    explicit CellFlowExperiment(const ExperimentContext &context);
 
   private:
     /// The cells in the capillary (InputError if there are none), the

@@ -50,6 +50,19 @@ namespace rbc_ifem
   };
 
   /**
+   * What every experiment is made from (the registry gives it): its
+   * registry name, the model's parameters, every parameter of the run as
+   * read (for parameters.prm) and the ranks it runs on.
+   */
+  struct ExperimentContext
+  {
+    std::string             name;
+    const Parameters       &parameters;
+    const ParameterHandler &prm;
+    MPI_Comm                communicator;
+  };
+
+  /**
    * One kind of run of the program, named by the parameter Experiment; the
    * registry (experiments/registry.h) lists them all. An experiment is a
    * type: it implements setup() and execute(), and run() does what every
@@ -71,15 +84,11 @@ namespace rbc_ifem
   {
   public:
     /**
-     * The experiment @p name (its registry name) with the model's
-     * @p parameters; @p prm holds every parameter of the run as read, for
-     * parameters.prm; @p parameters_file says when that is written.
+     * The experiment of @p context; @p parameters_file says when
+     * parameters.prm is written.
      */
-    Experiment(const std::string      &name,
-               const Parameters       &parameters,
-               const ParameterHandler &prm,
-               const MPI_Comm          communicator,
-               const ParametersFile    parameters_file);
+    Experiment(const ExperimentContext &context,
+               const ParametersFile     parameters_file);
 
     virtual ~Experiment() = default;
 

@@ -44,11 +44,8 @@ namespace rbc_ifem
   class FiniteUptakeExperiment : public UptakeExperiment
   {
   public:
-    FiniteUptakeExperiment(const std::string            &name,
-                           const Parameters             &parameters,
-                           const FiniteUptakeParameters &sweep,
-                           const ParameterHandler       &prm,
-                           const MPI_Comm                communicator);
+    FiniteUptakeExperiment(const ExperimentContext      &context,
+                           const FiniteUptakeParameters &sweep);
 
   private:
     /// Every layout of the study, built and checked.

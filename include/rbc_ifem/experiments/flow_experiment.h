@@ -20,10 +20,7 @@ namespace rbc_ifem
   class FlowExperiment : public Experiment
   {
   public:
-    FlowExperiment(const std::string      &name,
-                   const Parameters       &parameters,
-                   const ParameterHandler &prm,
-                   const MPI_Comm          communicator);
+    explicit FlowExperiment(const ExperimentContext &context);
 
   private:
     /// The mesh and the fluid's operators.

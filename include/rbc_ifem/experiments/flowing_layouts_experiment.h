@@ -77,11 +77,8 @@ namespace rbc_ifem
   class FlowingLayoutsExperiment : public Experiment
   {
   public:
-    FlowingLayoutsExperiment(const std::string              &name,
-                             const Parameters               &parameters,
-                             const FlowingLayoutsParameters &own,
-                             const ParameterHandler         &prm,
-                             const MPI_Comm                  communicator);
+    FlowingLayoutsExperiment(const ExperimentContext        &context,
+                             const FlowingLayoutsParameters &own);
 
     ~FlowingLayoutsExperiment() override;
 

@@ -24,10 +24,7 @@ namespace rbc_ifem
   class GeometryExperiment : public Experiment
   {
   public:
-    GeometryExperiment(const std::string      &name,
-                       const Parameters       &parameters,
-                       const ParameterHandler &prm,
-                       const MPI_Comm          communicator);
+    explicit GeometryExperiment(const ExperimentContext &context);
 
   private:
     /// The layout, the clearance check and the meshes.

@@ -19,10 +19,7 @@ namespace rbc_ifem
   class LayoutsExperiment : public UptakeExperiment
   {
   public:
-    LayoutsExperiment(const std::string      &name,
-                      const Parameters       &parameters,
-                      const ParameterHandler &prm,
-                      const MPI_Comm          communicator);
+    explicit LayoutsExperiment(const ExperimentContext &context);
 
   private:
     /// Every layout of the study, built and checked (InputError names the

@@ -32,11 +32,8 @@ namespace rbc_ifem
   class MeshConvergenceExperiment : public UptakeExperiment
   {
   public:
-    MeshConvergenceExperiment(const std::string               &name,
-                              const Parameters                &parameters,
-                              const MeshConvergenceParameters &study,
-                              const ParameterHandler          &prm,
-                              const MPI_Comm                   communicator);
+    MeshConvergenceExperiment(const ExperimentContext         &context,
+                              const MeshConvergenceParameters &study);
 
   private:
     /// The layout, and the membranes of level 0 checked for clearance

@@ -25,15 +25,10 @@ namespace rbc_ifem
     std::string documentation;
     /// A new object of its own subsection's parameters, or null.
     std::function<std::unique_ptr<ExperimentParameters>()> make_parameters;
-    /**
-     * The experiment, from its name, the model's parameters, its own (null
-     * if it has none) and everything as read, for parameters.prm.
-     */
-    std::function<std::unique_ptr<Experiment>(const std::string &,
-                                              const Parameters &,
-                                              const ExperimentParameters *,
-                                              const ParameterHandler &,
-                                              const MPI_Comm)>
+    /// The experiment of a context and its own parameters (null if it has
+    /// none).
+    std::function<std::unique_ptr<Experiment>(const ExperimentContext &,
+                                              const ExperimentParameters *)>
       create;
   };
 

@@ -69,11 +69,8 @@ namespace rbc_ifem
   class ShearExperiment : public Experiment
   {
   public:
-    ShearExperiment(const std::string      &name,
-                    const Parameters       &parameters,
-                    const ShearParameters  &shear,
-                    const ParameterHandler &prm,
-                    const MPI_Comm          communicator);
+    ShearExperiment(const ExperimentContext &context,
+                    const ShearParameters   &shear);
 
     ~ShearExperiment() override;
 

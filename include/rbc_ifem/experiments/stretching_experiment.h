@@ -48,11 +48,8 @@ namespace rbc_ifem
   class StretchingExperiment : public Experiment
   {
   public:
-    StretchingExperiment(const std::string          &name,
-                         const Parameters           &parameters,
-                         const StretchingParameters &stretching,
-                         const ParameterHandler     &prm,
-                         const MPI_Comm              communicator);
+    StretchingExperiment(const ExperimentContext    &context,
+                         const StretchingParameters &stretching);
 
   private:
     /// The membrane (rank 0).

@@ -1,7 +1,7 @@
 #ifndef rbc_ifem_experiments_uptake_experiment_h
 #define rbc_ifem_experiments_uptake_experiment_h
 
-#include <rbc_ifem/diffusion/uptake.h>
+#include <rbc_ifem/diffusion/uptake_solver.h>
 #include <rbc_ifem/experiments/experiment.h>
 #include <rbc_ifem/geometry/placed_cells.h>
 
@@ -11,35 +11,38 @@
 namespace rbc_ifem
 {
   /**
-   * What the CO uptake experiments (diffusion, layouts, mesh convergence)
-   * share: each is a steady diffusion solve (DiffusionSolver, through
-   * solve_uptake()) per layout on the capillary's diffusion mesh, refined in
-   * a band around the membranes, and a progress line per solve.
+   * What the CO uptake experiments (diffusion, layouts, finite uptake, mesh
+   * convergence) share: each is a steady diffusion solve (UptakeSolver) per
+   * layout on the capillary's diffusion mesh, refined in a band around the
+   * membranes, and a progress line per solve.
    */
   class UptakeExperiment : public Experiment
   {
   public:
     /// Its files all come from finished solves: ParametersFile::after_work.
-    UptakeExperiment(const std::string      &name,
-                     const Parameters       &parameters,
-                     const ParameterHandler &prm,
-                     const MPI_Comm          communicator);
+    explicit UptakeExperiment(const ExperimentContext &context);
 
   protected:
     /**
-     * The uptake of @p cells on the diffusion mesh refined
-     * @p band_refinements times around them; @p write_fields as for
-     * solve_uptake().
+     * The uptake solver of the run's parameters, with Mesh/Diffusion band
+     * refinements = @p band_refinements (a mesh convergence study's level).
      */
+    UptakeSolver
+    uptake_solver(const unsigned int band_refinements);
+
+    /// The uptake of @p cells by the run's solver; @p write_fields as for
+    /// UptakeSolver::solve().
     Uptake
     solve(
       const PlacedCells                                  &cells,
-      const unsigned int                                  band_refinements,
       const std::function<void(const DiffusionSolver &)> &write_fields = {});
 
     /// The progress line of one solve.
     void
     report(const std::string &what, const Uptake &uptake);
+
+    /// The run's uptake solver (Mesh/Diffusion band refinements as given).
+    const UptakeSolver uptake;
   };
 } // namespace rbc_ifem
 

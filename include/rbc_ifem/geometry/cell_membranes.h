@@ -4,6 +4,7 @@
 #include <rbc_ifem/base/csv.h>
 #include <rbc_ifem/geometry/cell_layout.h>
 #include <rbc_ifem/geometry/cell_surface.h>
+#include <rbc_ifem/geometry/membrane_surfaces.h>
 
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/grid/tria.h>
@@ -34,6 +35,10 @@ namespace rbc_ifem
 
     const MappingQ<2, 3> &
     mapping() const;
+
+    /// The surfaces and their mapping, as the uptake solve takes them.
+    MembraneSurfaces
+    membrane_surfaces() const;
 
     const std::vector<SurfaceMeasures> &
     measures() const;

@@ -6,10 +6,14 @@
 #include <rbc_ifem/coupling/immersed_coupling.h>
 #include <rbc_ifem/coupling/semi_implicit_load.h>
 #include <rbc_ifem/coupling/time_step_limit.h>
+#include <rbc_ifem/diffusion/uptake_solver.h>
 #include <rbc_ifem/fluid/fluid_problem.h>
+#include <rbc_ifem/ifem/checkpoint.h>
 #include <rbc_ifem/ifem/flow_domain.h>
 #include <rbc_ifem/ifem/run_observer.h>
 #include <rbc_ifem/ifem/run_record.h>
+#include <rbc_ifem/ifem/run_report.h>
+#include <rbc_ifem/ifem/step_schedule.h>
 #include <rbc_ifem/parameters.h>
 
 #include <deal.II/base/conditional_ostream.h>
@@ -41,12 +45,13 @@ namespace rbc_ifem
    * stays in the middle of a short segment; the fluid mesh, refined around
    * the cells' starting place, then stays fine where they are.
    *
-   * Every Diffusion interval steps the CO diffusion is solved on the
-   * current membranes (dm.csv, the P field and the flux map). The run writes
-   * flow.csv, cells.csv (shape measures) and the fluid and membrane VTUs
-   * every Time/Output interval steps, the tables of its observers
-   * (RunObserver) with its own, and a checkpoint every Checkpoint interval
-   * steps, from which Resume continues.
+   * After a step the run does what its StepSchedule says is due: every
+   * Diffusion interval steps the CO uptake of the current membranes
+   * (UptakeSolver: dm.csv, the P field and the flux map); every Time/Output
+   * interval steps flow.csv, cells.csv (shape measures), the fluid and
+   * membrane VTUs and the tables of its observers (RunObserver); every
+   * Checkpoint interval steps a checkpoint (Checkpoint), from which Resume
+   * continues. RunReport prints what it tells at the start and the end.
    *
    * A run that diverges (non-finite forces or fields, a point moving more
    * than Maximum step displacement of the mesh size in one step, a cell
@@ -93,30 +98,37 @@ namespace rbc_ifem
      */
     void
     add_cell_forces();
-    /// The dimensionless numbers and the stability estimate @p stable of
-    /// the run, and the warnings they call for.
-    void
-    report_startup(const CouplingTimeStepLimit &stable) const;
     /// Throw InputError now, before the run writes anything, if the first
     /// DM solve would (a diffusion mesh too coarse for the membranes).
     void
     check_uptake_input() const;
-    /**
-     * The end-of-run lines: @p n_run steps in @p wall_seconds, DM first and
-     * last (and in mL/(min mmHg)), the cells' deformation index, their
-     * volume and area drift and the largest local area change.
-     */
-    void
-    report_summary(const unsigned int n_run, const double wall_seconds) const;
     /**
      * Immersed cells/Coupling = semi-implicit: the fluid's velocity load
      * L = Δt Sᵀ K S (SemiImplicitLoad).
      */
     void
     setup_semi_implicit_load();
+    /// The tables, fields and DM of t = 0.
+    void
+    record_start();
+    /**
+     * What step record.step does after @p stepped (the fluid's report):
+     * @p due's actions, flow.csv and the progress line, with the time left
+     * from @p clock, started at step @p first_step.
+     */
+    void
+    do_what_is_due(const StepActions &due,
+                   const StepReport  &stepped,
+                   const Timer       &clock,
+                   const unsigned int first_step);
     /// Steps 2-6 and the frame update; returns the fluid's report.
     StepReport
     advance();
+    /// Stop the run (restoring @p last_good) if a point moves farther in
+    /// one step with @p velocities than Maximum step displacement allows.
+    void
+    check_displacement(const std::vector<Tensor<1, 3>>   &velocities,
+                       const std::vector<Vector<double>> &last_good);
     /// Solve the CO diffusion on the current membranes, add a dm.csv row.
     double
     solve_uptake(const unsigned int counter);
@@ -144,14 +156,9 @@ namespace rbc_ifem
     write_tables() const;
     void
     write_checkpoint() const;
+    /// Resume from the checkpoint (Checkpoint::read() checks it).
     void
     read_checkpoint();
-    /// Throw InputError naming the first parameter (other than those a
-    /// resume may change) whose value differs from @p written's, the
-    /// parameters of the run that wrote the checkpoint @p path.
-    void
-    check_resumed_parameters(const std::string &written,
-                             const std::string &path) const;
     /// Write the tables and a checkpoint, then throw RunInterrupted.
     [[noreturn]] void
     save_and_stop(const int signal) const;
@@ -173,11 +180,16 @@ namespace rbc_ifem
     parallel::fullydistributed::Triangulation<3> triangulation;
     FluidProblem                                 fluid;
     CellPopulation                               cells;
-    std::unique_ptr<ImmersedCoupling>            coupling;
+    /// The CO uptake solve of the cells' current shapes.
+    const UptakeSolver                uptake;
+    std::unique_ptr<ImmersedCoupling> coupling;
     /// The semi-implicit coupling's load; null for the explicit coupling.
     std::unique_ptr<SemiImplicitLoad> semi_implicit;
     std::vector<RunObserver *>        observers;
     RunRecord                         record;
+    const RunReport                   run_report;
+    const Checkpoint                  checkpoint;
+    const StepSchedule                schedule;
     /// Whether anything can touch: several cells, or a wall.
     bool   contacts  = false;
     double mesh_size = 0.; ///< fluid h at the membranes [µm]

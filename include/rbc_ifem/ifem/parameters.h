@@ -86,6 +86,16 @@ namespace rbc_ifem
 
     void
     add_parameters(ParameterHandler &prm);
+    /// The entries of the coupling: Enabled, Follow cells, Coupling.
+    void
+    add_coupling_parameters(ParameterHandler &prm);
+    /// The entries of what a run does when: the intervals and Resume.
+    void
+    add_schedule_parameters(ParameterHandler &prm);
+    /// The entries of the cells' guard and forces: Maximum step
+    /// displacement, Tether stiffness, Squeeze into lumen, Pushing forces.
+    void
+    add_force_parameters(ParameterHandler &prm);
     /// Throws InputError for held cells in a moving frame, or a zero
     /// Maximum step displacement.
     void

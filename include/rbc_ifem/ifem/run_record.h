@@ -18,6 +18,13 @@ namespace rbc_ifem
    */
   struct RunRecord
   {
+    /// An empty record (what a checkpoint is read into).
+    RunRecord() = default;
+
+    /// The record of a run of @p n_cells cells from its start: the tables'
+    /// headers (dm.csv's with DL columns if @p reaction), no rows.
+    RunRecord(const unsigned int n_cells, const bool reaction);
+
     unsigned int step     = 0;
     double       time     = 0.; ///< [s]
     double   frame_offset = 0.; ///< distance the frame has moved along x [µm]

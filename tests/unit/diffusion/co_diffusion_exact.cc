@@ -39,6 +39,18 @@ namespace
     unsigned int  iterations;
   };
 
+  /// Assemble and solve @p diffusion, set up.
+  Flows
+  solve(DiffusionSolver &diffusion)
+  {
+    diffusion.assemble();
+    diffusion.solve();
+    return {diffusion.total_flow(),
+            diffusion.boundary_flow(),
+            diffusion.n_dofs(),
+            diffusion.n_iterations()};
+  }
+
   Flows
   solve(const parallel::shared::Triangulation<3>  &mesh,
         const Triangulation<2, 3>                 &membrane,
@@ -46,31 +58,34 @@ namespace
         const std::function<double(unsigned int)> &permeability,
         const types::boundary_id                   pressure_boundary)
   {
-    TimerOutput                      timer(MPI_COMM_WORLD,
+    TimerOutput            timer(MPI_COMM_WORLD,
                       std::cout,
                       TimerOutput::never,
                       TimerOutput::wall_times);
-    const MappingQ<2, 3>             membrane_mapping(2);
-    std::unique_ptr<DiffusionSolver> diffusion;
+    const MappingQ<2, 3>   membrane_mapping(2);
+    const MembraneSurfaces membranes({&membrane}, membrane_mapping);
     if (parameters.method == DiffusionMethod::cut_cell)
       {
-        auto cut_cells = std::make_unique<CutCellDiffusion>(
-          parameters, permeability, pressure_boundary, MPI_COMM_WORLD, timer);
         // The meshes are the study's: no refinement where a coarse cell
         // reaches across the tube's or the sphere's centre.
-        cut_cells->refine_ridges(false);
-        diffusion = std::move(cut_cells);
+        CutCellGeometry::Options options;
+        options.refine_ridges = false;
+        const CutCellGeometry geometry(mesh,
+                                       membranes,
+                                       std::make_shared<MembraneDistance>(
+                                         membranes.meshes(), membrane_mapping),
+                                       parameters.degree,
+                                       std::nullopt,
+                                       options,
+                                       timer);
+        CutCellDiffusion      diffusion(
+          geometry, parameters, permeability, pressure_boundary, timer);
+        return solve(diffusion);
       }
-    else
-      diffusion = std::make_unique<CODiffusion>(
-        parameters, permeability, pressure_boundary, MPI_COMM_WORLD, timer);
-    diffusion->setup(mesh, {&membrane}, membrane_mapping);
-    diffusion->assemble();
-    diffusion->solve();
-    return {diffusion->total_flow(),
-            diffusion->boundary_flow(),
-            diffusion->n_dofs(),
-            diffusion->n_iterations()};
+    CODiffusion diffusion(
+      parameters, permeability, pressure_boundary, MPI_COMM_WORLD, timer);
+    diffusion.setup(mesh, membranes);
+    return solve(diffusion);
   }
 
   /// What each method is held to.

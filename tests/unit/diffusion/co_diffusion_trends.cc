@@ -8,7 +8,7 @@
 // - the gas layer adds almost no resistance: once its αD is large, DM of
 //   one cell does not depend on it.
 
-#include <rbc_ifem/diffusion/uptake.h>
+#include <rbc_ifem/diffusion/uptake_solver.h>
 #include <rbc_ifem/geometry/placed_cells.h>
 #include <rbc_ifem/parameters.h>
 
@@ -47,14 +47,9 @@ namespace
                             p.geometry,
                             p.cells,
                             p.cells.surface_refinements);
-    const Uptake      uptake = solve_uptake(p.geometry,
-                                       p.mesh,
-                                       p.diffusion,
-                                       cells.membranes.surfaces(),
-                                       cells.membranes.mapping(),
-                                       p.mesh.diffusion_band_refinements,
-                                       MPI_COMM_WORLD,
-                                       timer);
+    const Uptake      uptake =
+      UptakeSolver(p.geometry, p.mesh, p.diffusion, MPI_COMM_WORLD, timer)
+        .solve(cells.membranes.membrane_surfaces());
     std::cout << "  " << name_of(kind, layout_kind_names()) << ", " << n_cells
               << " cells: DM " << uptake.dm_total << " µm³/(s Torr), per cell "
               << uptake.dm_total / n_cells << '\n';

@@ -17,6 +17,7 @@
 // and k V.
 
 #include <rbc_ifem/diffusion/cut_cell_diffusion.h>
+#include <rbc_ifem/diffusion/cut_cell_reaction.h>
 #include <rbc_ifem/geometry/capillary_mesh.h>
 
 #include "check.h"
@@ -66,27 +67,39 @@ namespace
         const double                 cell_permeability,
         const std::optional<double> &rate)
   {
-    TimerOutput          timer(MPI_COMM_WORLD,
+    TimerOutput            timer(MPI_COMM_WORLD,
                       std::cout,
                       TimerOutput::never,
                       TimerOutput::wall_times);
-    const MappingQ<2, 3> membrane_mapping(2);
-    CutCellDiffusion     diffusion(
-      parameters,
-      [&](const unsigned int id) { return parameters.permeability(id); },
-      0,
-      MPI_COMM_WORLD,
+    const MappingQ<2, 3>   membrane_mapping(2);
+    const MembraneSurfaces membranes({&meshes.membrane}, membrane_mapping);
+    const auto             permeability = [&](const unsigned int id) {
+      return parameters.permeability(id);
+    };
+    CutCellGeometry::Options options;
+    options.refine_ridges    = false; // the sphere's centre is a ridge
+    options.separate_insides = rate.has_value();
+    const CutCellGeometry geometry(
+      meshes.ball,
+      membranes,
+      std::make_shared<MembraneDistance>(membranes.meshes(), membrane_mapping),
+      parameters.degree,
+      std::nullopt,
+      options,
       timer);
-    diffusion.refine_ridges(false); // the sphere's centre is a ridge
+    std::unique_ptr<CutCellProblem> diffusion;
     if (rate)
-      diffusion.react_inside_cells(cell_permeability, *rate);
-    diffusion.setup(meshes.ball, {&meshes.membrane}, membrane_mapping);
-    diffusion.assemble();
-    diffusion.solve();
-    return {diffusion.total_flow(),
-            diffusion.boundary_flow(),
-            diffusion.n_dofs(),
-            diffusion.n_iterations()};
+      diffusion = std::make_unique<CutCellReaction>(
+        geometry, parameters, permeability, 0, cell_permeability, *rate, timer);
+    else
+      diffusion = std::make_unique<CutCellDiffusion>(
+        geometry, parameters, permeability, 0, timer);
+    diffusion->assemble();
+    diffusion->solve();
+    return {diffusion->total_flow(),
+            diffusion->boundary_flow(),
+            diffusion->n_dofs(),
+            diffusion->n_iterations()};
   }
 } // namespace
 

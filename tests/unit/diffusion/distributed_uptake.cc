@@ -9,7 +9,7 @@
 //   one rank (4.178838523, the cut-cell parachute regression at t = 0), to
 //   solver tolerance.
 
-#include <rbc_ifem/diffusion/uptake.h>
+#include <rbc_ifem/diffusion/uptake_solver.h>
 #include <rbc_ifem/geometry/placed_cells.h>
 #include <rbc_ifem/parameters.h>
 
@@ -44,14 +44,9 @@ main(int argc, char **argv)
                           p.geometry,
                           p.cells,
                           p.cells.surface_refinements);
-  const Uptake      uptake = solve_uptake(p.geometry,
-                                     p.mesh,
-                                     p.diffusion,
-                                     cells.membranes.surfaces(),
-                                     cells.membranes.mapping(),
-                                     p.mesh.diffusion_band_refinements,
-                                     MPI_COMM_WORLD,
-                                     timer);
+  const Uptake      uptake =
+    UptakeSolver(p.geometry, p.mesh, p.diffusion, MPI_COMM_WORLD, timer)
+      .solve(cells.membranes.membrane_surfaces());
 
   Checker      check;
   const double share =

@@ -1,0 +1,43 @@
+#ifndef rbc_ifem_ifem_step_schedule_h
+#define rbc_ifem_ifem_step_schedule_h
+
+#include <rbc_ifem/ifem/parameters.h>
+
+namespace rbc_ifem
+{
+  /// What a step of a flowing run does after it has stepped.
+  struct StepActions
+  {
+    bool diffusion  = false; ///< solve DM (Immersed cells/Diffusion interval)
+    bool output     = false; ///< write fields and tables (Time/Output interval)
+    bool progress   = false; ///< (Immersed cells/Progress interval)
+    bool checkpoint = false; ///< (Immersed cells/Checkpoint interval)
+
+    /// Whether the step does any of these: then it also records flow.csv
+    /// and prints its progress line.
+    bool
+    any() const;
+  };
+
+  /**
+   * When a flowing run does what besides stepping: every k steps for each
+   * interval k > 0 of its parameters; the last step writes its output, and
+   * a checkpoint if the run writes any.
+   */
+  class StepSchedule
+  {
+  public:
+    StepSchedule(const TimeParameters &time, const ImmersedParameters &immersed);
+
+    /// What step @p step (counted from 1) does.
+    StepActions
+    actions(const unsigned int step) const;
+
+  private:
+    const unsigned int n_steps;
+    const unsigned int diffusion_interval, output_interval, progress_interval,
+      checkpoint_interval;
+  };
+} // namespace rbc_ifem
+
+#endif

@@ -1,0 +1,149 @@
+#include <rbc_ifem/base/output.h>
+#include <rbc_ifem/ifem/run_report.h>
+
+#include <cmath>
+
+namespace rbc_ifem
+{
+  RunReport::RunReport(const Parameters &parameters,
+                       const FlowDomain &domain,
+                       const MPI_Comm    communicator)
+    : parameters(parameters)
+    , domain(domain)
+    , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
+  {}
+
+  void
+  RunReport::startup(const CellPopulation        &cells,
+                     const CouplingTimeStepLimit &stable,
+                     const double                 mesh_size,
+                     const double                 time_step) const
+  {
+    const FluidParameters    &f           = parameters.fluid;
+    const MembraneParameters &m           = parameters.membrane;
+    const double              speed       = domain.velocity_scale;
+    const double              length      = domain.length_scale;
+    const double              spacing     = cells.point_spacing();
+    const double              stable_step = stable.limit;
+
+    pcout << "  cells: " << cells.size() << ", " << cells.n_points()
+          << " membrane points, spacing up to " << spacing
+          << " µm; fluid mesh size at the cells h = " << mesh_size << " µm\n"
+          << "  Reynolds number ρ U L / μ = "
+          << f.density * speed * length / f.viscosity
+          << ", capillary number μ U / G = "
+          << f.viscosity * speed / m.shear_modulus
+          << " (U = " << domain.velocity_symbol
+          << ", L = " << domain.length_symbol << ")\n"
+          << "  explicit-coupling time step limit ≈ " << stable_step
+          << " s (in-plane " << stable.in_plane << " s, bending "
+          << stable.bending
+          << " s); explicit runs stay stable below about 0.7 of it "
+             "(doc/ifem.md); coupling "
+          << name_of(parameters.immersed.coupling, coupling_scheme_names())
+          << ", Δt = " << time_step << " s ("
+          << (parameters.time.automatic_time_step() ? "Time step = auto, " : "")
+          << time_step / stable_step << " of the estimate)" << std::endl;
+    warn(cells, stable, mesh_size, time_step);
+  }
+
+  void
+  RunReport::warn(const CellPopulation        &cells,
+                  const CouplingTimeStepLimit &stable,
+                  const double                 mesh_size,
+                  const double                 time_step) const
+  {
+    const double spacing     = cells.point_spacing();
+    const double stable_step = stable.limit;
+    // Measured (doc/ifem.md): 0.71 of the estimate stable over the default
+    // run, 0.83 diverged after 112 steps.
+    if (parameters.immersed.coupling == CouplingScheme::explicit_forces &&
+        time_step > 0.75 * stable_step)
+      pcout << "  WARNING: Time/Time step = " << time_step << " s is "
+            << time_step / stable_step << " of the explicit-coupling estimate "
+            << stable_step
+            << " s; runs stay stable below about 0.7 of it: set it to at "
+               "most "
+            << 0.7 * stable_step
+            << " s, or to auto, or set Immersed cells/Coupling = "
+               "semi-implicit."
+            << std::endl;
+    const InteractionParameters &contact = parameters.interactions;
+    if (cells.size() > 1 && contact.repulsion_pressure > 0. &&
+        contact.repulsion_range < spacing)
+      pcout << "  WARNING: Cell interactions/Repulsion range = "
+            << contact.repulsion_range
+            << " µm is shorter than the membrane point spacing " << spacing
+            << " µm: a point of one cell may slip between the points of "
+               "another. Raise the range or Cells/Surface refinements."
+            << std::endl;
+    if (spacing > 0.5 * mesh_size)
+      pcout
+        << "  WARNING: the membrane point spacing " << spacing
+        << " µm exceeds half the fluid mesh size at the cells, h/2 = "
+        << 0.5 * mesh_size
+        << " µm (the paper's rule). To follow it, raise Cells/Surface "
+           "refinements and Mesh/Diffusion band refinements by one each and "
+           "set Time/Time step = auto (closer points lower the explicit-"
+           "coupling estimate), or lower Mesh/Fluid band refinements."
+        << std::endl;
+  }
+
+  void
+  RunReport::summary(const RunRecord      &record,
+                     const CellPopulation &cells,
+                     const unsigned int    n_run,
+                     const double          wall_seconds) const
+  {
+    pcout << "  summary: t = " << record.time << " s, " << n_run << " steps in "
+          << duration_text(wall_seconds) << ", "
+          << wall_seconds / std::max(1u, n_run) << " s per step" << std::endl;
+    summarize_dm(record);
+    summarize_cells(cells);
+  }
+
+  void
+  RunReport::summarize_dm(const RunRecord &record) const
+  {
+    if (record.dm_history.empty())
+      return;
+    // 1 µm³/s = 6e-11 mL/min, and 1 mmHg = 1.000000142 Torr.
+    const double to_ml_min_mmhg    = 60e-12 * 1.000000142;
+    const auto [first_time, first] = record.dm_history.front();
+    const auto [last_time, last]   = record.dm_history.back();
+    if (record.dm_history.size() == 1)
+      pcout << "  DM at t = " << first_time << " s " << first
+            << " µm³/(s Torr), " << first * to_ml_min_mmhg << " mL/(min mmHg)"
+            << std::endl;
+    else
+      pcout << "  DM at t = " << first_time << " s " << first << ", at t = "
+            << last_time << " s " << last << " µm³/(s Torr) (" << std::showpos
+            << 100. * (last / first - 1.) << std::noshowpos
+            << "%); in mL/(min mmHg) " << first * to_ml_min_mmhg << " and "
+            << last * to_ml_min_mmhg << std::endl;
+  }
+
+  void
+  RunReport::summarize_cells(const CellPopulation &cells) const
+  {
+    const std::vector<CellShape> shapes = cells.shapes();
+    double deformation = 0., volume_drift = 0., area_drift = 0.,
+           local_area = 0.;
+    for (unsigned int c = 0; c < shapes.size(); ++c)
+      {
+        local_area = std::max(local_area, shapes[c].largest_local_area_change);
+        deformation += shapes[c].deformation_index / shapes.size();
+        const double dv = shapes[c].volume / cells.reference_volume(c) - 1.;
+        const double da = shapes[c].area / cells.reference_area(c) - 1.;
+        volume_drift =
+          std::abs(dv) > std::abs(volume_drift) ? dv : volume_drift;
+        area_drift = std::abs(da) > std::abs(area_drift) ? da : area_drift;
+      }
+    pcout << "  cells at the end: deformation index " << deformation
+          << (shapes.size() > 1 ? " (mean)" : "") << ", volume change "
+          << 100. * volume_drift << "%, area change " << 100. * area_drift
+          << "%" << (shapes.size() > 1 ? " (the largest over the cells)" : "")
+          << ", largest local area change " << 100. * local_area
+          << "% (the cell field area_change of cell_C.pvd)" << std::endl;
+  }
+} // namespace rbc_ifem

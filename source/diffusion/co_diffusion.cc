@@ -578,13 +578,11 @@ namespace rbc_ifem
       }
     catch (const SolverControl::NoConvergence &e)
       {
-        throw SolverFailure(
-          "CO diffusion: FGMRES did not converge in " +
-          std::to_string(e.last_step) + " iterations (residual " +
-          Utilities::to_string(e.last_residual) + ", wanted " +
-          Utilities::to_string(control.tolerance()) +
-          "). Raise Diffusion/Max linear iterations, or check "
-          "that the membranes are resolved by the mesh.");
+        throw no_convergence("CO diffusion: FGMRES",
+                             e,
+                             control.tolerance(),
+                             "Raise Diffusion/Max linear iterations, or check "
+                             "that the membranes are resolved by the mesh.");
       }
     solution.scale(scale);
     iterations = control.last_step();

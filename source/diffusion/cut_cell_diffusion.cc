@@ -63,9 +63,7 @@ namespace rbc_ifem
   CutCellDiffusion::membrane_coupling(
     const DoFHandler<3>::active_cell_iterator &cell) const
   {
-    const unsigned int k      = parameters.degree;
-    const double       h      = cell->minimum_vertex_distance();
-    const double       plasma = permeability(cell->material_id());
-    return {plasma, 0., parameters.nitsche_penalty * k * (k + 1) / h * plasma};
+    const double plasma = permeability(cell->material_id());
+    return {plasma, 0., nitsche_weight(cell) * plasma};
   }
 } // namespace rbc_ifem

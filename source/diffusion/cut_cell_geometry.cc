@@ -356,7 +356,7 @@ namespace rbc_ifem
     flags.surface = update_quadrature_points;
     // NonMatching::FEValues keeps a pointer to the collection.
     const hp::FECollection<3> fe_collection(level_set_fe);
-    const auto fe_values_ptr = cut_cell_values(fe_collection, flags);
+    const auto fe_values_ptr            = cut_cell_values(fe_collection, flags);
     NonMatching::FEValues<3> &fe_values = *fe_values_ptr;
     // What the membranes ask of the mesh, found on this rank's cut cells:
     // [0] a cut cell outside the plasma (a membrane in the vessel wall) and

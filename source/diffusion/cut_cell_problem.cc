@@ -199,6 +199,15 @@ namespace rbc_ifem
     return permeability(cell->material_id());
   }
 
+  double
+  CutCellProblem::nitsche_weight(
+    const DoFHandler<3>::active_cell_iterator &cell) const
+  {
+    const unsigned int k = parameters.degree;
+    return parameters.nitsche_penalty * k * (k + 1) /
+           cell->minimum_vertex_distance();
+  }
+
   void
   CutCellProblem::assemble()
   {
@@ -394,13 +403,11 @@ namespace rbc_ifem
       }
     catch (const SolverControl::NoConvergence &e)
       {
-        throw SolverFailure(
-          "CO diffusion (cut cells): CG did not converge in " +
-          std::to_string(e.last_step) + " iterations (residual " +
-          Utilities::to_string(e.last_residual) + ", wanted " +
-          Utilities::to_string(control.tolerance()) +
-          "). Raise Diffusion/Max linear iterations, or Diffusion/Ghost "
-          "penalty.");
+        throw no_convergence("CO diffusion (cut cells): CG",
+                             e,
+                             control.tolerance(),
+                             "Raise Diffusion/Max linear iterations, or "
+                             "Diffusion/Ghost penalty.");
       }
     x.scale(scale);
     iterations = control.last_step();

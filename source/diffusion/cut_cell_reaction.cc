@@ -74,7 +74,8 @@ namespace rbc_ifem
       };
     };
     plasma_pressure = std::make_unique<SideField>("co_pressure", side(true));
-    cell_pressure = std::make_unique<SideField>("co_pressure_cell", side(false));
+    cell_pressure =
+      std::make_unique<SideField>("co_pressure_cell", side(false));
     set_up_system(
       FESystem<3>(FE_Q<3>(parameters.degree), 1 + geometry.n_colours()));
   }
@@ -131,13 +132,12 @@ namespace rbc_ifem
   CutCellReaction::membrane_coupling(
     const DoFHandler<3>::active_cell_iterator &cell) const
   {
-    const unsigned int k      = parameters.degree;
-    const double       h      = cell->minimum_vertex_distance();
-    const double       gamma  = parameters.nitsche_penalty * k * (k + 1) / h;
-    const double       plasma = permeability(cell->material_id());
-    const double       inside = cell_permeability;
-    const double       mh     = std::sqrt(rate / inside) * h;
-    const double       stiff  = inside * std::sqrt(1. + mh * mh);
+    const double gamma  = nitsche_weight(cell);
+    const double plasma = permeability(cell->material_id());
+    const double inside = cell_permeability;
+    const double mh =
+      std::sqrt(rate / inside) * cell->minimum_vertex_distance();
+    const double stiff = inside * std::sqrt(1. + mh * mh);
     const double w0 = stiff / (plasma + stiff), w1 = 1. - w0;
     return {w0 * plasma,
             w1 * inside,

@@ -40,13 +40,12 @@ namespace rbc_ifem
 
   void
   add_membrane_coupling(const NonMatching::FEImmersedSurfaceValues<3> &membrane,
-                        const MembraneCoupling &coupling,
-                        const CutCellShapes    &shapes,
-                        FullMatrix<double>     &matrix)
+                        const MembraneCoupling                        &coupling,
+                        const CutCellShapes                           &shapes,
+                        FullMatrix<double>                            &matrix)
   {
-    const unsigned int  n              = shapes.side.size();
-    const double        flux_weight[2] = {coupling.plasma_flux,
-                                          coupling.cell_flux};
+    const unsigned int n        = shapes.side.size();
+    const double flux_weight[2] = {coupling.plasma_flux, coupling.cell_flux};
     std::vector<double> flux(n), jump(n);
     for (const unsigned int q : membrane.quadrature_point_indices())
       {
@@ -78,8 +77,8 @@ namespace rbc_ifem
                     const unsigned int          degree,
                     FullMatrix<double>         &matrix)
   {
-    const unsigned int  n      = face.n_current_interface_dofs();
-    const auto          jumps  = face[FEValuesExtractors::Scalar(field)];
+    const unsigned int  n     = face.n_current_interface_dofs();
+    const auto          jumps = face[FEValuesExtractors::Scalar(field)];
     std::vector<double> first(n), second(n);
     for (const unsigned int q : face.quadrature_point_indices())
       {
@@ -96,7 +95,8 @@ namespace rbc_ifem
         const double w2 = weight * h * h * h * face.JxW(q);
         for (unsigned int i = 0; i < n; ++i)
           for (unsigned int j = 0; j < n; ++j)
-            matrix(i, j) += w1 * first[i] * first[j] + w2 * second[i] * second[j];
+            matrix(i, j) +=
+              w1 * first[i] * first[j] + w2 * second[i] * second[j];
       }
   }
 } // namespace rbc_ifem

@@ -152,6 +152,18 @@ namespace rbc_ifem
     return total_flow() / alveolar_pressure;
   }
 
+  SolverFailure
+  DiffusionSolver::no_convergence(const std::string                  &solver,
+                                  const SolverControl::NoConvergence &e,
+                                  const double                        tolerance,
+                                  const std::string                  &advice)
+  {
+    return SolverFailure(
+      solver + " did not converge in " + std::to_string(e.last_step) +
+      " iterations (residual " + Utilities::to_string(e.last_residual) +
+      ", wanted " + Utilities::to_string(tolerance) + "). " + advice);
+  }
+
   double
   DiffusionSolver::boundary_flow() const
   {

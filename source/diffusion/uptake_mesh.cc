@@ -74,7 +74,7 @@ namespace rbc_ifem
 
   void
   UptakeMesh::build(
-    const MembraneSurfaces &surfaces,
+    const MembraneSurfaces                              &surfaces,
     const std::function<void(const parallel::TriangulationBase<3> &,
                              const bool refine_ridges)> &set_up)
   {
@@ -177,7 +177,8 @@ namespace rbc_ifem
   }
 
   void
-  UptakeMesh::partition_like(Triangulation<3> &serial, const unsigned int n_parts)
+  UptakeMesh::partition_like(Triangulation<3>  &serial,
+                             const unsigned int n_parts)
   {
     GridTools::partition_triangulation(n_parts, serial);
     if (!partition.empty())

@@ -53,12 +53,12 @@ namespace rbc_ifem
       sink()
       {
         if (!sink_problem)
-          sink_problem =
-            std::make_unique<CutCellDiffusion>(*cut_cells,
-                                               d,
-                                               permeability(),
-                                               DiffusionBoundary::alveolar_surface,
-                                               timer);
+          sink_problem = std::make_unique<CutCellDiffusion>(
+            *cut_cells,
+            d,
+            permeability(),
+            DiffusionBoundary::alveolar_surface,
+            timer);
         return *sink_problem;
       }
 
@@ -143,26 +143,26 @@ namespace rbc_ifem
                        const unsigned int        band_refinements,
                        const MPI_Comm            communicator)
       {
-        mesh.build(surfaces,
-                   [&](const parallel::TriangulationBase<3> &triangulation,
-                       const bool) {
-                     auto multiplier = std::make_unique<CODiffusion>(
-                       d,
-                       permeability(),
-                       DiffusionBoundary::alveolar_surface,
-                       communicator,
-                       timer,
-                       geometry.period());
-                     try
-                       {
-                         multiplier->setup(triangulation, surfaces);
-                       }
-                     catch (const MembranesFinerThanMesh &e)
-                       {
-                         throw_too_coarse(e, band_refinements);
-                       }
-                     sink_problem = std::move(multiplier);
-                   });
+        mesh.build(
+          surfaces,
+          [&](const parallel::TriangulationBase<3> &triangulation, const bool) {
+            auto multiplier =
+              std::make_unique<CODiffusion>(d,
+                                            permeability(),
+                                            DiffusionBoundary::alveolar_surface,
+                                            communicator,
+                                            timer,
+                                            geometry.period());
+            try
+              {
+                multiplier->setup(triangulation, surfaces);
+              }
+            catch (const MembranesFinerThanMesh &e)
+              {
+                throw_too_coarse(e, band_refinements);
+              }
+            sink_problem = std::move(multiplier);
+          });
       }
 
       [[noreturn]] static void
@@ -237,7 +237,8 @@ namespace rbc_ifem
   {
     return solve_sink_and_rates(surfaces,
                                 diffusion.uptake == CellUptake::reaction ?
-                                  std::vector<double>{diffusion.reaction_rate()} :
+                                  std::vector<double>{
+                                    diffusion.reaction_rate()} :
                                   std::vector<double>{},
                                 write_fields)
       .front();
@@ -262,13 +263,8 @@ namespace rbc_ifem
     const std::function<void(const DiffusionSolver &)> &write_fields) const
   {
     Timer       clock;
-    UptakeSetup setup(geometry,
-                      mesh,
-                      diffusion,
-                      surfaces,
-                      !rates.empty(),
-                      communicator,
-                      timer);
+    UptakeSetup setup(
+      geometry, mesh, diffusion, surfaces, !rates.empty(), communicator, timer);
     DiffusionSolver &sink = setup.sink();
     sink.assemble();
     sink.solve();

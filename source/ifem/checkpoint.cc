@@ -114,10 +114,9 @@ namespace rbc_ifem
       throw std::runtime_error("it is not an rbc-ifem checkpoint");
     const auto file_format = header_value<unsigned long>(in, "format");
     if (file_format != format)
-      throw std::runtime_error("it has the format " +
-                               std::to_string(file_format) +
-                               "; this version of rbc-ifem reads " +
-                               std::to_string(format));
+      throw std::runtime_error(
+        "it has the format " + std::to_string(file_format) +
+        "; this version of rbc-ifem reads " + std::to_string(format));
     const auto layout = header_value<std::uint32_t>(in, "layout");
     if (layout != layout_fingerprint())
       throw std::runtime_error(

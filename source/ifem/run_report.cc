@@ -116,9 +116,9 @@ namespace rbc_ifem
             << " µm³/(s Torr), " << first * to_ml_min_mmhg << " mL/(min mmHg)"
             << std::endl;
     else
-      pcout << "  DM at t = " << first_time << " s " << first << ", at t = "
-            << last_time << " s " << last << " µm³/(s Torr) (" << std::showpos
-            << 100. * (last / first - 1.) << std::noshowpos
+      pcout << "  DM at t = " << first_time << " s " << first
+            << ", at t = " << last_time << " s " << last << " µm³/(s Torr) ("
+            << std::showpos << 100. * (last / first - 1.) << std::noshowpos
             << "%); in mL/(min mmHg) " << first * to_ml_min_mmhg << " and "
             << last * to_ml_min_mmhg << std::endl;
   }

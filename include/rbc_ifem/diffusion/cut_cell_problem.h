@@ -119,7 +119,8 @@ namespace rbc_ifem
 
     /// The Nitsche coefficients on @p cell: the assembly's and the flux's.
     virtual MembraneCoupling
-    membrane_coupling(const DoFHandler<3>::active_cell_iterator &cell) const = 0;
+    membrane_coupling(
+      const DoFHandler<3>::active_cell_iterator &cell) const = 0;
 
     /**
      * αD of field @p field on @p cell, the ghost penalty's weight: the
@@ -129,6 +130,10 @@ namespace rbc_ifem
     virtual double
     field_permeability(const unsigned int                         field,
                        const DoFHandler<3>::active_cell_iterator &cell) const;
+
+    /// γ_N k(k+1)/h on @p cell: the Nitsche penalty per αD [1/µm].
+    double
+    nitsche_weight(const DoFHandler<3>::active_cell_iterator &cell) const;
 
     /// Add P to @p data_out: the plasma's field as "co_pressure".
     virtual void

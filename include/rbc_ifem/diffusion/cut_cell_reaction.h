@@ -60,10 +60,10 @@ namespace rbc_ifem
     CutCellReaction(const CutCellGeometry                     &geometry,
                     const DiffusionParameters                 &parameters,
                     const std::function<double(unsigned int)> &permeability,
-                    const types::boundary_id                   pressure_boundary,
-                    const double                               cell_permeability,
-                    const double                               rate,
-                    TimerOutput                               &timer);
+                    const types::boundary_id pressure_boundary,
+                    const double             cell_permeability,
+                    const double             rate,
+                    TimerOutput             &timer);
 
     /// DL = total_flow() / P_A [µm³ s⁻¹ Torr⁻¹]: the CO bound inside the
     /// cells per Torr of alveolar pressure.

@@ -83,9 +83,9 @@ namespace rbc_ifem
    */
   void
   add_membrane_coupling(const NonMatching::FEImmersedSurfaceValues<3> &membrane,
-                        const MembraneCoupling &coupling,
-                        const CutCellShapes    &shapes,
-                        FullMatrix<double>     &matrix);
+                        const MembraneCoupling                        &coupling,
+                        const CutCellShapes                           &shapes,
+                        FullMatrix<double>                            &matrix);
 
   /**
    * The ghost penalty of field @p field on one face of a cut cell,

@@ -2,6 +2,7 @@
 #define rbc_ifem_diffusion_diffusion_solver_h
 
 #include <rbc_ifem/base/field_data.h>
+#include <rbc_ifem/base/solver_failure.h>
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/distributed/tria_base.h>
@@ -9,6 +10,7 @@
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 #include <deal.II/numerics/data_out.h>
@@ -104,6 +106,17 @@ namespace rbc_ifem
     /// the reaction; each problem names it so.
     double
     flow_per_pressure() const;
+
+    /**
+     * The failure of the linear solver @p solver (its name in the message)
+     * that stopped as @p e says, short of @p tolerance, with @p advice on
+     * what to change.
+     */
+    static SolverFailure
+    no_convergence(const std::string                  &solver,
+                   const SolverControl::NoConvergence &e,
+                   const double                        tolerance,
+                   const std::string                  &advice);
 
     /**
      * The flow through boundary @p boundary: Σ over its DoFs j of

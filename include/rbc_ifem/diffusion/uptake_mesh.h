@@ -52,7 +52,7 @@ namespace rbc_ifem
      * second argument (refine ridges) false.
      */
     void
-    build(const MembraneSurfaces &surfaces,
+    build(const MembraneSurfaces                              &surfaces,
           const std::function<void(const parallel::TriangulationBase<3> &,
                                    const bool refine_ridges)> &set_up);
 

@@ -63,8 +63,8 @@ namespace rbc_ifem
      */
     Uptake
     solve(const MembraneSurfaces                             &surfaces,
-          const std::function<void(const DiffusionSolver &)> &write_fields =
-            {}) const;
+          const std::function<void(const DiffusionSolver &)> &write_fields = {})
+      const;
 
     /**
      * What solve() gives with Diffusion/Uptake = reaction, for each

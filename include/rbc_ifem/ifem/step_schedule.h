@@ -27,7 +27,8 @@ namespace rbc_ifem
   class StepSchedule
   {
   public:
-    StepSchedule(const TimeParameters &time, const ImmersedParameters &immersed);
+    StepSchedule(const TimeParameters     &time,
+                 const ImmersedParameters &immersed);
 
     /// What step @p step (counted from 1) does.
     StepActions

@@ -94,19 +94,20 @@ main(int argc, char *argv[])
   const std::string directory = "checkpoint_format_test";
   std::filesystem::create_directory(directory);
   CheckpointState state;
-  state.n_ranks    = 1;
-  state.parameters = "set Output directory = " + directory + "\n";
-  state.record     = RunRecord(1, false);
+  state.n_ranks     = 1;
+  state.parameters  = "set Output directory = " + directory + "\n";
+  state.record      = RunRecord(1, false);
   state.record.step = 3;
   state.record.cells.add(0.5, 0);
-  state.fluid.solution = {1., 2., 3.};
-  state.positions      = {Vector<double>(6)};
+  state.fluid.solution  = {1., 2., 3.};
+  state.positions       = {Vector<double>(6)};
   state.positions[0](4) = 7.;
   const ResumingRun run{state.parameters, 1, 3, 1, 6, 10};
   Checkpoint(directory).write(state, MPI_COMM_WORLD);
   const CheckpointState read = Checkpoint(directory).read(run);
   check.holds("a state read back is the one written",
-              read.record.step == 3 && read.fluid.solution == state.fluid.solution &&
+              read.record.step == 3 &&
+                read.fluid.solution == state.fluid.solution &&
                 read.positions[0](4) == 7.);
 
   const std::string path = Checkpoint(directory).path();

@@ -15,7 +15,7 @@
 # over an hour more). Prints a Markdown table against Haberman & Sayre and
 # the body-fitted solution (sphere-in-tube-reference), and keeps
 # the runs in OUTPUT_DIRECTORY (default output/sphere_towed) for
-# doc/plot_sphere_axis.py.
+# doc/scripts/plot_sphere_axis.py.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 out=$(realpath -m "${3:-$here/output/sphere_towed}")

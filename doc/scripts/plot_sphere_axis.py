@@ -3,7 +3,7 @@
 held sphere (doc/validation.md, Section 2), from the runs of
 benchmarks/sphere_towed.sh.
 
-    /usr/bin/python3 doc/plot_sphere_axis.py OUTPUT_DIRECTORY PICTURE.png
+    /usr/bin/python3 doc/scripts/plot_sphere_axis.py OUTPUT_DIRECTORY PICTURE.png
 
 Two panels, (a) the towed sphere (walls moving past it at U = 1000 µm/s)
 and (b) the sphere held in Poiseuille flow, each on the fluid meshes the

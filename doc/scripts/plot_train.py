@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Plot a train of cells flowing in a periodic capillary (prm/periodic_train.prm).
 
-    /usr/bin/python3 doc/plot_train.py OUTPUT_DIRECTORY PICTURE.png
+    /usr/bin/python3 doc/scripts/plot_train.py OUTPUT_DIRECTORY PICTURE.png
 
 Three panels against time: (a) DM of the segment and DM per cell from
 dm.csv; (b) the deformation index of every cell from cells.csv; (c) the

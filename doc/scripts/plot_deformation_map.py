@@ -9,7 +9,7 @@ modulus) and against the capillary's diameter (at two capillary numbers);
 the paper's -13% in grey. Below, the cell's outline in the plane of the
 capillary's axis at the end, at five points of the map, with the wall.
 
-    /usr/bin/python3 doc/plot_deformation_map.py output/deformation_map doc/figures/deformation_map.png
+    /usr/bin/python3 doc/scripts/plot_deformation_map.py output/deformation_map doc/figures/deformation_map.png
 
 Needs python3-matplotlib and python3-vtk9 (`scripts/install-packages.sh --docs`).
 """

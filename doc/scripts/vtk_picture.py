@@ -1,4 +1,4 @@
-"""What the doc/render_*.py scripts share: drawing rbc-ifem's fields with VTK
+"""What the doc/scripts/render_*.py scripts share: drawing rbc-ifem's fields with VTK
 and saving the view as a PNG, in one style. Reading the run's files is
 rbc_ifem_run's (read_dataset, Run.series). Needs python3-vtk9 and the
 DejaVu fonts (fonts-dejavu-core; `scripts/install-packages.sh --docs`).

@@ -2,7 +2,7 @@
 """Plot how a red cell flowing in the capillary (`Experiment = flow` with
 immersed cells) deforms and how its DM follows.
 
-    /usr/bin/python3 doc/plot_parachute.py OUTPUT_DIRECTORY PICTURE.png
+    /usr/bin/python3 doc/scripts/plot_parachute.py OUTPUT_DIRECTORY PICTURE.png
 
 Three panels against time: (a) DM of the capillary from dm.csv; (b) the
 shape of cell 0 from cells.csv, its axial length and diameter 2 r_max on the

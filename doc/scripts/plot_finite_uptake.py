@@ -5,7 +5,7 @@ lumped estimate 1/DL = 1/DM + 1/(θ V_c) dashed, DM (the membrane sink, θ → �
 dotted, the range of θ the cited formulas give at PO₂ 100 Torr shaded grey,
 and the paper's one-cell DM of 1.03-1.18 µm³ s⁻¹ Torr⁻¹ shaded red.
 
-    /usr/bin/python3 doc/plot_finite_uptake.py output/finite_uptake/uptake.csv doc/figures/finite_uptake.png
+    /usr/bin/python3 doc/scripts/plot_finite_uptake.py output/finite_uptake/uptake.csv doc/figures/finite_uptake.png
 
 Needs python3-matplotlib (`scripts/install-packages.sh --docs`).
 """

@@ -8,7 +8,7 @@ diffusion_membranes.pvd, ...), and the parameters.prm it ran with. A study
 (`Experiment = flowing layouts`, `shear`) keeps one such directory per run
 below its own. Usage, from the repository's root:
 
-    import sys; sys.path.insert(0, "doc")
+    import sys; sys.path.insert(0, "doc/scripts")
     from rbc_ifem_run import Run
 
     run = Run("output/default")

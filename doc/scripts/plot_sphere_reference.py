@@ -2,7 +2,7 @@
 """Plot the published wall corrections for a rigid sphere on the axis of a
 tube against the body-fitted solution (doc/validation.md, Section 2).
 
-    /usr/bin/python3 doc/plot_sphere_reference.py SPHERE_IN_TUBE_REFERENCE PICTURE.png
+    /usr/bin/python3 doc/scripts/plot_sphere_reference.py SPHERE_IN_TUBE_REFERENCE PICTURE.png
 
 Runs the program SPHERE_IN_TUBE_REFERENCE (build/sphere-in-tube-reference)
 at λ = 0.2, 0.25, ..., 0.8 on its mesh of 4 refinements (converged to 5e-4

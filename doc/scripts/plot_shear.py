@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Plot the capsule-in-shear validation (`Experiment = shear`).
 
-    /usr/bin/python3 doc/plot_shear.py OUTPUT_DIRECTORY PICTURE.png
+    /usr/bin/python3 doc/scripts/plot_shear.py OUTPUT_DIRECTORY PICTURE.png
 
 Three panels: (a) the Taylor deformation D against the strain γ̇t of every
 run, from OUTPUT_DIRECTORY/ca_<Ca>/shear.csv; (b) the steady D against the
@@ -53,7 +53,7 @@ def shear_plane_cut(vtu):
 def main(directory, picture):
     study = Run(directory)
     summary = study.table("shear_summary.csv")
-    references = read_table(os.path.join(HERE, "results", "shear_references.csv"))
+    references = read_table(os.path.join(HERE, "..", "results", "shear_references.csv"))
     rate = study.parameter("Shear rate")
     ca = [r["capillary_number"] for r in summary]
     colours = plt.cm.viridis([i / max(1, len(summary) - 1) for i in range(len(summary))])

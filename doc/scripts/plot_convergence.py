@@ -3,7 +3,7 @@
 difference of DM from its Richardson-extrapolated limit against the number
 of mesh nodes, with the 2% and 0.5% lines.
 
-    /usr/bin/python3 doc/plot_convergence.py output/mesh_convergence/convergence.csv doc/figures/mesh_convergence.png
+    /usr/bin/python3 doc/scripts/plot_convergence.py output/mesh_convergence/convergence.csv doc/figures/mesh_convergence.png
 
 Needs python3-matplotlib (`scripts/install-packages.sh --docs`).
 """

@@ -1,4 +1,4 @@
-"""The one matplotlib style of the doc/plot_*.py scripts: DejaVu Sans (it has
+"""The one matplotlib style of the doc/scripts/plot_*.py scripts: DejaVu Sans (it has
 µ, ⁻, ³ and γ̇), text readable at the size the docs show the pictures, a
 light grid, legends that let the curves show through, 150 dots per inch.
 

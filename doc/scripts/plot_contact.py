@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Plot two cells pushed into each other (prm/cells_in_contact.prm).
 
-    /usr/bin/python3 doc/plot_contact.py OUTPUT_DIRECTORY PICTURE.png
+    /usr/bin/python3 doc/scripts/plot_contact.py OUTPUT_DIRECTORY PICTURE.png
 
 Two panels against time, from cells.csv: (a) the gap between the two
 membranes (min_gap) with the repulsion range of the run's parameters.prm;

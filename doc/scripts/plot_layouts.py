@@ -4,7 +4,7 @@ DM per cell against the number of cells, one line per layout (the paper's
 Figs. 7 and 8). Random layouts show their mean with ± one standard
 deviation over the seeds.
 
-    /usr/bin/python3 doc/plot_layouts.py output/layouts/layouts.csv doc/figures/layouts.png
+    /usr/bin/python3 doc/scripts/plot_layouts.py output/layouts/layouts.csv doc/figures/layouts.png
 
 Needs python3-matplotlib (`scripts/install-packages.sh --docs`).
 """

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Render an `Experiment = diffusion` run to a PNG.
 
-    xvfb-run -a /usr/bin/python3 doc/render_diffusion.py OUTPUT_DIRECTORY PICTURE.png
+    xvfb-run -a /usr/bin/python3 doc/scripts/render_diffusion.py OUTPUT_DIRECTORY PICTURE.png
 
 Left: the CO partial pressure P on the mid-plane z = 0 of the capillary,
 wall and gas layer (P = P_A on the outside, 0 on the membranes), the

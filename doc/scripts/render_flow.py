@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Render the last field of an `Experiment = flow` run to a PNG.
 
-    xvfb-run -a /usr/bin/python3 doc/render_flow.py OUTPUT_DIRECTORY PICTURE.png
+    xvfb-run -a /usr/bin/python3 doc/scripts/render_flow.py OUTPUT_DIRECTORY PICTURE.png
 
 Top: the axial velocity on the mid-plane z = 0 of the capillary, with
 velocity arrows along three cross-sections: the Poiseuille parabola.

@@ -2,7 +2,7 @@
 """Render a red cell flowing in the capillary (`Experiment = flow` with
 immersed cells) as it deforms into a parachute.
 
-    xvfb-run -a /usr/bin/python3 doc/render_parachute.py OUTPUT_DIRECTORY PICTURE.png [N ...]
+    xvfb-run -a /usr/bin/python3 doc/scripts/render_parachute.py OUTPUT_DIRECTORY PICTURE.png [N ...]
 
 PICTURE: the shapes N of cell_0.pvd (default: the first, about one third, two
 thirds and the last) seen from the side, the flow going to the right,

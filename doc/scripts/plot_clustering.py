@@ -3,7 +3,7 @@
 of two flowing layouts studies, without and with aggregation
 (prm/flowing_layouts_quick.prm, prm/flowing_layouts_aggregation.prm).
 
-    /usr/bin/python3 doc/plot_clustering.py WITHOUT_DIRECTORY WITH_DIRECTORY PICTURE.png
+    /usr/bin/python3 doc/scripts/plot_clustering.py WITHOUT_DIRECTORY WITH_DIRECTORY PICTURE.png
 
 One panel per study: for each clustered run of N > 1 cells, against time,
 the smallest gap from a cell to its nearest neighbour (solid) and the

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Render the output of an `Experiment = geometry` run to a PNG.
 
-    xvfb-run -a /usr/bin/python3 doc/render_geometry.py OUTPUT_DIRECTORY PICTURE.png
+    xvfb-run -a /usr/bin/python3 doc/scripts/render_geometry.py OUTPUT_DIRECTORY PICTURE.png
 
 Shows the membranes (coloured by cell) in the capillary: the back half of the
 diffusion mesh's vessel wall (red) and gas layer (blue), cut open, with its

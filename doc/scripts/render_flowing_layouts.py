@@ -2,7 +2,7 @@
 """Render the cells of a flowing layouts study and their flux maps: the
 paper's Fig. 6 with deforming cells.
 
-    xvfb-run -a /usr/bin/python3 doc/render_flowing_layouts.py OUTPUT_DIRECTORY N PICTURE.png
+    xvfb-run -a /usr/bin/python3 doc/scripts/render_flowing_layouts.py OUTPUT_DIRECTORY N PICTURE.png
 
 One row per layout of N cells (uniform, random with the first seed,
 clustered): left the rigid cells at t = 0, right the cells at the end of

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Plot an `Experiment = flowing layouts` run (prm/flowing_layouts*.prm).
 
-    /usr/bin/python3 doc/plot_flowing_layouts.py OUTPUT_DIRECTORY PREFIX [N]
+    /usr/bin/python3 doc/scripts/plot_flowing_layouts.py OUTPUT_DIRECTORY PREFIX [N]
 
 Writes two pictures:
   PREFIX_dm.png    DM of the segment and DM per cell against the number of

@@ -4,7 +4,7 @@ bead force, one pair of curves per stretch.csv of `Experiment = stretching`,
 over the optical-tweezers measurements of Mills et al. (2004) when a file of
 them is given with --experiment.
 
-    /usr/bin/python3 doc/plot_stretch.py PICTURE.png [--experiment mills.csv] LABEL=stretch.csv ...
+    /usr/bin/python3 doc/scripts/plot_stretch.py PICTURE.png [--experiment mills.csv] LABEL=stretch.csv ...
 
 The experiment file has the columns force, transverse_diameter,
 axial_diameter and their low/high ends (doc/results/mills2004_stretching.csv).

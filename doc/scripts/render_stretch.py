@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Render stretched cells of an `Experiment = stretching` run side by side.
 
-    xvfb-run -a /usr/bin/python3 doc/render_stretch.py OUTPUT_DIRECTORY PICTURE.png [N ...]
+    xvfb-run -a /usr/bin/python3 doc/scripts/render_stretch.py OUTPUT_DIRECTORY PICTURE.png [N ...]
 
 Shows the equilibria N of stretch.pvd (default: the first, middle and last)
 seen obliquely from above, the beads pulling along x, coloured by the

@@ -9,7 +9,8 @@
     doc/scripts/tables.py --help     this text
 
 A page (every Markdown file git tracks) marks a generated table so, each
-comment at the start of a line:
+comment at the start of a line (or indented by up to three spaces, in a
+list item; the table gets the same indent):
 
     <!-- table: results/benchmarks/fluid.csv where ranks=2 date=2026-12-04 -->
     | refinements | DoFs | ... |
@@ -28,7 +29,8 @@ is, then any of
     columns COLUMN ...                the columns, in order; a COLUMN that is no
                                       column's name is a Python expression of
                                       the columns (their names as variables,
-                                      numbers as floats), e.g. mean_speed/1000
+                                      numbers as floats, or c("any name")),
+                                      e.g. mean_speed/1000
     headers TEXT ...                  the table's header, one per column
                                       (default: the columns' names)
     formats FORMAT ...                one per column: - (as the file has it),
@@ -53,8 +55,8 @@ import shlex
 import subprocess
 import sys
 
-OPEN = re.compile(r"^<!--\s*table:(.*?)-->", re.S | re.M)
-CLOSE = re.compile(r"^<!-- end table -->", re.M)
+OPEN = re.compile(r"^( {0,3})<!--\s*table:(.*?)-->", re.S | re.M)
+CLOSE = re.compile(r"^ {0,3}<!-- end table -->", re.M)
 KEYWORDS = ("where", "columns", "headers", "formats", "empty")
 HIDDEN = ("commit", "date", "source")
 
@@ -129,9 +131,14 @@ def evaluate(expression, row):
     for key, field in row.items():
         if key is not None and key.isidentifier():
             names[key] = number(field) if number(field) is not None else field
+    def column(name):
+        if name not in row:
+            raise TableError(f"column '{expression}': no column '{name}'")
+        return number(row[name]) if number(row[name]) is not None else row[name]
+
     try:
-        value = eval(expression, {"__builtins__": {}, "abs": abs, "min": min, "max": max},
-                     names)
+        value = eval(expression, {"__builtins__": {}, "abs": abs, "min": min, "max": max,
+                                  "c": column}, names)
     except NameError as error:
         raise TableError(f"column '{expression}': {error}") from error
     except (TypeError, ZeroDivisionError):
@@ -191,12 +198,13 @@ def generate(page, text):
         if close is None:
             raise TableError(f"table {count}: no '<!-- end table -->' at the start of a line")
         try:
-            table = render(parse_marker(match.group(1)), page)
+            table = render(parse_marker(match.group(2)), page)
         except TableError as error:
             raise TableError(f"table {count}: {error}") from error
+        indent = match.group(1)
         out.append(text[position:match.end()])
-        out.append("\n" + table)
-        out.append(close.group(0))
+        out.append("\n" + "".join(indent + line + "\n" for line in table.splitlines()) + indent)
+        out.append(close.group(0).lstrip())
         position = close.end()
     out.append(text[position:])
     return "".join(out)

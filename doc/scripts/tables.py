@@ -25,7 +25,8 @@ is, then any of
 
     where NAME=VALUE NAME!=VALUE ...  the rows to show: every condition holds;
                                       VALUE may list alternatives, a|b|c, and
-                                      numbers compare as numbers (2 = 2.0)
+                                      numbers compare as numbers (2 = 2.0);
+                                      NAME>NUMBER and NAME<NUMBER too
     columns COLUMN ...                the columns, in order; a COLUMN that is no
                                       column's name is a Python expression of
                                       the columns (their names as variables,
@@ -90,9 +91,10 @@ def parse_marker(text):
         if key == "empty":
             spec["empty"] = word
         elif key == "where":
-            match = re.match(r"(.+?)(!=|=)(.*)$", word, re.S)
+            match = re.match(r"(.+?)(!=|=|>|<)(.*)$", word, re.S)
             if not match:
-                raise TableError(f"where '{word}': expected NAME=VALUE or NAME!=VALUE")
+                raise TableError(f"where '{word}': expected NAME=VALUE, NAME!=VALUE, "
+                                 "NAME>NUMBER or NAME<NUMBER")
             spec["where"].append((match.group(1), match.group(2), match.group(3).split("|")))
         else:
             spec[key].append(word)
@@ -157,9 +159,13 @@ def render(spec, page):
     for name, _, _ in spec["where"]:
         if name not in names:
             raise TableError(f"{path} has no column '{name}' (where)")
-    rows = [row for row in rows
-            if all(any(same(row[name], v) for v in values) == (op == "=")
-                   for name, op, values in spec["where"])]
+    def holds(row, name, op, values):
+        if op in "<>":
+            a, b = number(row[name]), number(values[0])
+            return a is not None and b is not None and (a > b if op == ">" else a < b)
+        return any(same(row[name], v) for v in values) == (op == "=")
+
+    rows = [row for row in rows if all(holds(row, *condition) for condition in spec["where"])]
     if not rows:
         raise TableError(f"no row of {path} is where the marker asks")
     columns = spec["columns"]

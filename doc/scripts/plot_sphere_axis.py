@@ -10,7 +10,8 @@ and (b) the sphere held in Poiseuille flow, each on the fluid meshes the
 benchmark ran (OUTPUT_DIRECTORY/{towed,held}_{1,2,3}): the velocity u_x on the axis, from
 the last file of flow.pvd, against the distance from the sphere's centre. The
 sphere is held, so the plasma inside it should be at rest. Prints the mean
-u_x over the inner half of the diameter. Needs python3-matplotlib and
+u_x over the inner half of the diameter and adds it to
+doc/results/sphere_axis_velocity.csv (rbc_ifem_run.add_results). Needs python3-matplotlib and
 python3-vtk9 (`scripts/install-packages.sh --docs`).
 """
 import os
@@ -21,7 +22,7 @@ from vtkmodules.vtkFiltersSources import vtkLineSource
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 import plot_style
-from rbc_ifem_run import Run
+from rbc_ifem_run import Run, add_results
 
 plt = plot_style.pyplot()
 
@@ -51,6 +52,7 @@ def axial_velocity(run, length):
 
 
 def main(directory, picture):
+    means = []
     figure, axes = plt.subplots(1, 2, figsize=(10, 3.8), sharey=False, layout="constrained")
     for axis, case, title in zip(axes, ("towed", "held"),
                                  ("(a) towed: walls moving past at U = 1000 µm/s",
@@ -64,6 +66,7 @@ def main(directory, picture):
             s = (x - centre) / radius
             core = abs(s) < 0.5
             print(f"{case}_{level}: h = {h} µm, mean u_x over |x - c| < a/2 = {u[core].mean():.1f} µm/s")
+            means.append([case, h, f"{u[core].mean():.1f}"])
             axis.plot(s, u, label=f"h = {h} µm")
         axis.axvspan(-1, 1, color="0.9", zorder=0)
         axis.axhline(0, color="0.5", linewidth=0.5)
@@ -73,6 +76,9 @@ def main(directory, picture):
         axis.legend()
     axes[0].set_ylabel("u_x on the axis [µm/s] (frame of the sphere)")
     plot_style.save(figure, picture)
+    print("added to", add_results("sphere_axis_velocity",
+                                  ["case", "fluid h at the sphere [µm]",
+                                   "mean u_x over |x - c| < a/2 [µm/s]"], means))
 
 
 if __name__ == "__main__":

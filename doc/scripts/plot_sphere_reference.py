@@ -8,14 +8,15 @@ Runs the program SPHERE_IN_TUBE_REFERENCE (build/sphere-in-tube-reference)
 at λ = 0.2, 0.25, ..., 0.8 on its mesh of 4 refinements (converged to 5e-4
 or better, 20 seconds in all) and plots (a) the towed drag factor K and the
 free sphere's U/U_c, and (b) how far Bohlin's (1960) K and Haberman &
-Sayre's (1958) K and U/U_c lie from it. Prints the table it plots. Needs
-python3-matplotlib.
+Sayre's (1958) K and U/U_c lie from it. Prints the table it plots and adds
+it to doc/results/sphere_wall_corrections.csv (rbc_ifem_run.add_results).
+Needs python3-matplotlib.
 """
 import subprocess
 import sys
 
 import plot_style
-from rbc_ifem_run import parse_table
+from rbc_ifem_run import add_results, parse_table
 
 plt = plot_style.pyplot()
 
@@ -47,10 +48,14 @@ def body_fitted(program, l):
 def main(program, picture):
     lambdas = [round(0.2 + 0.05 * i, 2) for i in range(13)]
     rows = [(l, *body_fitted(program, l)) for l in lambdas]
-    print("lambda,K,U/U_c,Bohlin K,Haberman-Sayre K,Haberman-Sayre U/U_c")
-    for l, k, u in rows:
-        print(f"{l},{k:.5f},{u:.5f},{bohlin_drag_factor(l):.5f},"
-              f"{haberman_sayre_drag_factor(l):.5f},{haberman_sayre_velocity_ratio(l):.5f}")
+    header = ["λ", "K", "U/U_c", "Bohlin K", "Haberman-Sayre K", "Haberman-Sayre U/U_c"]
+    table = [[l, f"{k:.5f}", f"{u:.5f}", f"{bohlin_drag_factor(l):.5f}",
+              f"{haberman_sayre_drag_factor(l):.5f}", f"{haberman_sayre_velocity_ratio(l):.5f}"]
+             for l, k, u in rows]
+    print(",".join(header))
+    for row in table:
+        print(",".join(str(v) for v in row))
+    print("added to", add_results("sphere_wall_corrections", header, table))
 
     figure, (left, right) = plt.subplots(1, 2, figsize=(10, 4), layout="constrained")
     l = [r[0] for r in rows]

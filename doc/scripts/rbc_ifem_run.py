@@ -21,6 +21,9 @@ below its own. Usage, from the repository's root:
     for case in Run("output/shear_capsule").runs("ca_*"):   # a study's runs, Ca in order
         print(case.name, case.table("shear.csv")[-1]["taylor_deformation"])
 
+A script that computes a table the pages show adds it to doc/results/
+with add_results(name, header, rows) (doc/results/README.md).
+
 The same are functions of a path: read_table(path), read_series(path),
 read_dataset(path), read_parameter(path, name); parse_table(text) reads a
 table a program printed. Numbers in a table become floats, text (a
@@ -29,11 +32,44 @@ out of their row: test with `"min_gap" in row`. read_dataset needs
 python3-vtk9, the rest only Python (`scripts/install-packages.sh --docs`).
 """
 import csv
+import datetime
 import glob
 import io
 import os
 import re
+import subprocess
+import sys
 import xml.etree.ElementTree as ElementTree
+
+RESULTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "results")
+
+
+def add_results(name, header, rows):
+    """Append ROWS (lists of values, in the order of the list HEADER) to
+    doc/results/NAME.csv, each after the commit of the repository, the date
+    and time and the command that made it (the columns commit, date and
+    source of doc/results/README.md); the file and its header row are
+    created if missing. RBC_IFEM_RESULTS names another folder. Returns the
+    file's path."""
+    folder = os.environ.get("RBC_IFEM_RESULTS", RESULTS)
+    root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+    try:
+        commit = subprocess.run(["git", "-C", root, "rev-parse", "--short", "HEAD"],
+                                capture_output=True, text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        commit = "unknown"
+    date = datetime.datetime.now().strftime("%Y-%m-%d %H:%M")
+    source = " ".join(["doc/scripts/" + os.path.basename(sys.argv[0])] + sys.argv[1:])
+    path = os.path.join(folder, name + ".csv")
+    os.makedirs(folder, exist_ok=True)
+    new = not os.path.exists(path) or os.path.getsize(path) == 0
+    with open(path, "a", newline="", encoding="utf-8") as f:
+        writer = csv.writer(f, lineterminator="\n")
+        if new:
+            writer.writerow(["commit", "date", "source"] + list(header))
+        for row in rows:
+            writer.writerow([commit, date, source] + list(row))
+    return path
 
 
 def _value(text):

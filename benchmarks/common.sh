@@ -13,6 +13,68 @@ benchmark_setup() {
   cd "$work"
 }
 
+# The results of every benchmark go to doc/results/benchmarks/NAME.csv
+# (doc/results/README.md): one header row, then a row per measured line,
+# each beginning with the commit the repository had checked out, the date
+# and time the script started and the command that ran it, so that every
+# run adds its rows and the pages pick theirs (doc/scripts/tables.py). Set
+# RBC_IFEM_RESULTS to another folder to keep a run out of doc/results/.
+#
+# results_setup ARGUMENTS...: the commit, date and command of this run
+# (sourcing this file calls it with the script's arguments).
+results_setup() {
+  local root argument
+  root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+  results_dir=${RBC_IFEM_RESULTS:-$root/doc/results/benchmarks}
+  results_commit=$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)
+  results_date=$(date '+%F %H:%M')
+  results_source="benchmarks/$(basename "$0")"
+  for argument in "$@"; do results_source+=" $argument"; done
+  mkdir -p "$results_dir"
+}
+
+# csv_field TEXT: TEXT as one CSV field (quoted if it holds a comma or a quote).
+csv_field() {
+  case $1 in
+    *[,\"]*) printf '"%s"' "${1//\"/\"\"}" ;;
+    *) printf '%s' "$1" ;;
+  esac
+}
+
+# markdown_row VALUE...: | VALUE | VALUE | ... |
+markdown_row() {
+  local line="|" v
+  for v in "$@"; do line+=" $v |"; done
+  echo "$line"
+}
+
+# results_table NAME HEADER...: the rows that follow go to NAME.csv (with
+# the header commit,date,source,HEADER... if the file is new); prints the
+# Markdown header.
+results_table() {
+  results_file=$results_dir/$1.csv
+  shift
+  if [ ! -s "$results_file" ]; then
+    local header=commit,date,source h
+    for h in "$@"; do header+=,$(csv_field "$h"); done
+    echo "$header" >"$results_file"
+  fi
+  markdown_row "$@"
+  printf '|%.0s---' "$@"
+  echo "|"
+}
+
+# results_row VALUE...: one row of the table results_table started, appended
+# to its file with this run's commit, date and command, and printed as
+# Markdown.
+results_row() {
+  local row v
+  row=$(csv_field "$results_commit"),$(csv_field "$results_date"),$(csv_field "$results_source")
+  for v in "$@"; do row+=,$(csv_field "$v"); done
+  echo "$row" >>"$results_file"
+  markdown_row "$@"
+}
+
 # Haberman & Sayre (1958) for a rigid sphere of radius λR on the axis of a
 # tube of radius R, as awk functions: the free sphere's velocity over the
 # centre-line velocity in Poiseuille flow, and the drag factor K of a sphere
@@ -53,3 +115,5 @@ subsection Diffusion
 end
 PRM
 }
+
+results_setup "$@"

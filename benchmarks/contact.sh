@@ -10,7 +10,8 @@
 # forces' seconds per step (MembraneElasticity alone, or with the
 # interactions) and the gap check's. The interactions' cost is the
 # difference of the force times plus the gap check, printed as a share of
-# the step of the run with them.
+# the step of the run with them. The table's rows are added to
+# doc/results/benchmarks/contact.csv (benchmarks/common.sh).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 source "$(dirname "$0")/common.sh"
@@ -49,15 +50,13 @@ PRM
 run with 10 10 true
 run without 0 0 false
 
-echo "| run | membrane points | s per step | membrane forces [s per step] | gap check [s per step] |"
-echo "|---|---|---|---|---|"
+results_table contact ranks run "membrane points" "s per step" "membrane forces [s per step]" "gap check [s per step]"
 for name in with without; do
   points=$(sed -n 's/.*cells: 7, \([0-9]*\) membrane points.*/\1/p' $name.log)
   per_step=$(sed -n 's/.* steps in .* s, \(.*\) s per step/\1/p' $name.log)
-  awk -F, -v name="$name" -v points="$points" -v per_step="$per_step" '
-    NR > 1 { gsub(/"/, "", $1); t[$1] = $3 }
-    END { printf "| %s interactions | %s | %.3f | %.4f | %.4f |\n", name, points, per_step,
-                 t["membrane forces"] / 20, t["contact check"] / 20 }' $name/timing.csv
+  read -r forces check < <(awk -F, 'NR > 1 { gsub(/"/, "", $1); t[$1] = $3 }
+    END { printf "%.4f %.4f\n", t["membrane forces"] / 20, t["contact check"] / 20 }' $name/timing.csv)
+  results_row "$ranks" "$name interactions" "$points" "$(printf '%.3f' "$per_step")" "$forces" "$check"
 done
 awk -F, 'FNR == 1 { file++ } FNR > 1 { gsub(/"/, "", $1); t[file, $1] = $3 }
          END { extra = (t[1, "membrane forces"] - t[2, "membrane forces"]) / 20

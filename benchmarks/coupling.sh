@@ -20,7 +20,8 @@
 # Δt/4 with the observed order, the same comparison at K = 500 pN/µm, and
 # the largest local area change (max over membrane cells of |A/A0 - 1|,
 # cells.csv's local_area_change) at every DM instant at K = 50 and 500
-# pN/µm. About 10 minutes on 2 ranks.
+# pN/µm. Each table's rows are added to doc/results/benchmarks/coupling_*.csv
+# (benchmarks/common.sh). About 10 minutes on 2 ranks.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 source "$here/benchmarks/common.sh"
@@ -66,68 +67,81 @@ run semi_stiff_large semi-implicit 1.2e-4 100 10 500
 run explicit_stiff explicit 1.6e-6 7500 750 500
 
 seconds() { printf '%.1f' "$(cat "$1.seconds")"; }
+ratio() { echo "$(cat "$1.seconds") / $(cat "$2.seconds")" | bc -l | xargs printf '%.2f'; }
+shape() { awk -F, -v c="$2" 'END { print $c }' "$1/cells.csv"; }
+# row COMMAND...: the words COMMAND prints (an underscore in a word for a
+# space), one row of the current table.
+row() { local -a words; read -r -a words < <("$@"); results_row "$ranks" "${words[@]//_/ }"; }
+
 echo "## Wall time of the whole default run on $ranks rank(s), DM solves included"
 echo
-echo "| coupling | Δt [s] | steps | wall [s] | FGMRES iterations per step |"
-echo "|---|---|---|---|---|"
+results_table coupling_wall ranks "K [pN/µm]" coupling "Δt [s]" steps "wall [s]" "FGMRES iterations per step"
 for name in explicit semi_fine semi semi_coarse explicit_stiff semi_stiff semi_stiff_large; do
   step=$(sed -n 's/^  set Time step *= *//p' "$name.prm" | tail -1)
   steps=$(sed -n 's/^  set Number of steps *= *//p' "$name.prm" | tail -1)
+  modulus=$(sed -n 's/^  set Area dilation modulus *= *//p' "$name.prm" | tail -1)
   iterations=$(awk -F, 'NR > 1 { s += $8; n++ } END { printf "%.1f", s / n }' "$name/flow.csv")
-  echo "| $(sed -n 's/^  set Coupling *= *//p' "$name.prm" | tail -1) | $step | $steps | $(seconds "$name") | $iterations |"
+  results_row "$ranks" "$modulus" "$(sed -n 's/^  set Coupling *= *//p' "$name.prm" | tail -1)" "$step" "$steps" \
+    "$(seconds "$name")" "$iterations"
 done
 echo
-echo "ratio: $(echo "$(cat explicit.seconds) / $(cat semi.seconds)" | bc -l | xargs printf '%.2f') (explicit over semi-implicit at 3e-4 s)"
+results_table coupling_ratio ranks "K [pN/µm]" "explicit run" "over the semi-implicit run at Δt [s]" ratio
+results_row "$ranks" 50 "1.5e-5 s, 800 steps" 3e-4 "$(ratio explicit semi)"
+results_row "$ranks" 500 "1.6e-6 s, 7500 steps" 4e-5 "$(ratio explicit_stiff semi_stiff)"
+results_row "$ranks" 500 "1.6e-6 s, 7500 steps" 1.2e-4 "$(ratio explicit_stiff semi_stiff_large)"
 echo
 echo "## DM at every DM instant [µm³/(s Torr)]"
 echo
-echo "| t [ms] | explicit 1.5e-5 s | semi-implicit 3e-4 s | difference |"
-echo "|---|---|---|---|"
+results_table coupling_dm ranks "t [ms]" "explicit 1.5e-5 s" "semi-implicit 3e-4 s" difference
 paste -d, explicit/dm.csv semi/dm.csv | awk -F, 'NR > 1 { n = NF / 2
-  printf "| %.1f | %.5f | %.5f | %+.3f%% |\n", 1000 * $1, $2, $(n + 2), 100 * ($(n + 2) / $2 - 1) }'
+  printf "%.1f %.5f %.5f %+.3f%%\n", 1000 * $1, $2, $(n + 2), 100 * ($(n + 2) / $2 - 1) }' |
+  while read -r -a words; do results_row "$ranks" "${words[@]}"; done
 echo
 echo "## The cell at 12 ms"
 echo
-shape() { awk -F, -v c="$2" 'END { print $c }' "$1/cells.csv"; }
-echo "| | explicit 1.5e-5 s | semi-implicit 3e-4 s | difference |"
-echo "|---|---|---|---|"
-awk -v a="$(shape explicit 10)" -v b="$(shape semi 10)" 'BEGIN {
-  printf "| deformation index | %.6f | %.6f | %+.2e (%+.2f%%) |\n", a, b, b - a, 100 * (b - a) / (a < 0 ? -a : a) }'
-awk -v a="$(shape explicit 12)" -v b="$(shape semi 12)" 'BEGIN {
-  printf "| volume change | %+.4f%% | %+.4f%% | %+.4f%% of the volume |\n", 100 * a, 100 * b, 100 * (b - a) }'
-awk -v a="$(shape explicit 13)" -v b="$(shape semi 13)" 'BEGIN {
-  printf "| area change | %+.4f%% | %+.4f%% | %+.4f%% of the area |\n", 100 * a, 100 * b, 100 * (b - a) }'
+results_table coupling_shape ranks "at 12 ms" "explicit 1.5e-5 s" "semi-implicit 3e-4 s" difference
+a=$(shape explicit 10) b=$(shape semi 10)
+results_row "$ranks" "deformation index" "$(printf '%.6f' "$a")" "$(printf '%.6f' "$b")" \
+  "$(awk -v a="$a" -v b="$b" 'BEGIN { printf "%+.2e (%+.2f%%)", b - a, 100 * (b - a) / (a < 0 ? -a : a) }')"
+a=$(shape explicit 12) b=$(shape semi 12)
+results_row "$ranks" "volume change" "$(awk -v a="$a" 'BEGIN { printf "%+.4f%%", 100 * a }')" \
+  "$(awk -v b="$b" 'BEGIN { printf "%+.4f%%", 100 * b }')" \
+  "$(awk -v a="$a" -v b="$b" 'BEGIN { printf "%+.4f%% of the volume", 100 * (b - a) }')"
+a=$(shape explicit 13) b=$(shape semi 13)
+results_row "$ranks" "area change" "$(awk -v a="$a" 'BEGIN { printf "%+.4f%%", 100 * a }')" \
+  "$(awk -v b="$b" 'BEGIN { printf "%+.4f%%", 100 * b }')" \
+  "$(awk -v a="$a" -v b="$b" 'BEGIN { printf "%+.4f%% of the area", 100 * (b - a) }')"
 echo
 echo "## Time-step convergence of the semi-implicit coupling"
 echo
-echo "| Δt [s] | deformation index at 12 ms | change from the next larger Δt |"
-echo "|---|---|---|"
-d1=$(shape semi_coarse 10); d2=$(shape semi 10); d3=$(shape semi_fine 10)
-awk -v a="$d1" -v b="$d2" -v c="$d3" -v e="$(shape explicit 10)" 'BEGIN {
-  printf "| 6e-4 | %.6f | |\n| 3e-4 | %.6f | %.2e |\n| 1.5e-4 | %.6f | %.2e |\n", a, b, b - a, c, c - b
-  printf "\nobserved order: %.2f (from the three); explicit at 1.5e-5 s: %.6f\n", log((b - a) / (c - b)) / log(2), e }'
+d1=$(shape semi_coarse 10); d2=$(shape semi 10); d3=$(shape semi_fine 10); e=$(shape explicit 10)
+results_table coupling_time_step ranks "Δt [s]" "deformation index at 12 ms" "change from the next larger Δt"
+results_row "$ranks" 6e-4 "$(printf '%.6f' "$d1")" ""
+results_row "$ranks" 3e-4 "$(printf '%.6f' "$d2")" "$(awk -v a="$d1" -v b="$d2" 'BEGIN { printf "%.2e", b - a }')"
+results_row "$ranks" 1.5e-4 "$(printf '%.6f' "$d3")" "$(awk -v b="$d2" -v c="$d3" 'BEGIN { printf "%.2e", c - b }')"
+echo
+results_table coupling_order ranks "observed order (6e-4, 3e-4, 1.5e-4 s)" "deformation index at 12 ms, explicit 1.5e-5 s"
+results_row "$ranks" "$(awk -v a="$d1" -v b="$d2" -v c="$d3" 'BEGIN { printf "%.2f", log((b - a) / (c - b)) / log(2) }')" \
+  "$(printf '%.6f' "$e")"
 echo
 echo "## K = 500 pN/µm: explicit and semi-implicit"
 echo
-ratio() { echo "$(cat "$1.seconds") / $(cat "$2.seconds")" | bc -l | xargs printf '%.2f'; }
-echo "ratio: $(ratio explicit_stiff semi_stiff) (explicit at 1.6e-6 s over semi-implicit at 4e-5 s), $(ratio explicit_stiff semi_stiff_large) (over semi-implicit at 1.2e-4 s)"
-echo
-echo "| at 12 ms | explicit 1.6e-6 s | semi-implicit 4e-5 s | semi-implicit 1.2e-4 s |"
-echo "|---|---|---|---|"
 last_dm() { awk -F, 'END { print $2 }' "$1/dm.csv"; }
-awk -v a="$(last_dm explicit_stiff)" -v b="$(last_dm semi_stiff)" -v c="$(last_dm semi_stiff_large)" 'BEGIN {
-  printf "| DM [µm³/(s Torr)] | %.5f | %.5f (%+.3f%%) | %.5f (%+.3f%%) |\n", a, b, 100 * (b / a - 1), c, 100 * (c / a - 1) }'
-awk -v a="$(shape explicit_stiff 10)" -v b="$(shape semi_stiff 10)" -v c="$(shape semi_stiff_large 10)" 'BEGIN {
-  printf "| deformation index | %.6f | %.6f (%+.2f%%) | %.6f (%+.2f%%) |\n", a, b, 100 * (b - a) / -a, c, 100 * (c - a) / -a }'
-awk -v a="$(shape explicit_stiff 12)" -v b="$(shape semi_stiff 12)" -v c="$(shape semi_stiff_large 12)" 'BEGIN {
-  printf "| volume change | %+.4f%% | %+.4f%% | %+.4f%% |\n", 100 * a, 100 * b, 100 * c }'
+results_table coupling_stiff ranks "at 12 ms" "explicit 1.6e-6 s" "semi-implicit 4e-5 s" "semi-implicit 1.2e-4 s"
+row awk -v a="$(last_dm explicit_stiff)" -v b="$(last_dm semi_stiff)" -v c="$(last_dm semi_stiff_large)" 'BEGIN {
+  printf "DM_[µm³/(s_Torr)] %.5f %.5f_(%+.3f%%) %.5f_(%+.3f%%)\n", a, b, 100 * (b / a - 1), c, 100 * (c / a - 1) }'
+row awk -v a="$(shape explicit_stiff 10)" -v b="$(shape semi_stiff 10)" -v c="$(shape semi_stiff_large 10)" 'BEGIN {
+  printf "deformation_index %.6f %.6f_(%+.2f%%) %.6f_(%+.2f%%)\n", a, b, 100 * (b - a) / -a, c, 100 * (c - a) / -a }'
+row awk -v a="$(shape explicit_stiff 12)" -v b="$(shape semi_stiff 12)" -v c="$(shape semi_stiff_large 12)" 'BEGIN {
+  printf "volume_change %+.4f%% %+.4f%% %+.4f%%\n", 100 * a, 100 * b, 100 * c }'
 echo
 echo "## The largest local area change, max over membrane cells of |A/A0 - 1|, at every DM instant"
 echo
-echo "| t [ms] | K = 50, semi-implicit 3e-4 s | K = 500, explicit 1.6e-6 s | K = 500, semi-implicit 4e-5 s | K = 500, semi-implicit 1.2e-4 s |"
-echo "|---|---|---|---|---|"
+results_table coupling_local_area_change ranks "t [ms]" "K = 50, semi-implicit 3e-4 s" "K = 500, explicit 1.6e-6 s" \
+  "K = 500, semi-implicit 4e-5 s" "K = 500, semi-implicit 1.2e-4 s"
 # column RUN NAME: the column NAME of RUN's cells.csv, without its header.
 column() { awk -F, -v name="$2" 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == name) c = i; next } { print $c }' "$1/cells.csv"; }
 paste -d, <(column semi time) <(column semi local_area_change) <(column explicit_stiff local_area_change) \
   <(column semi_stiff local_area_change) <(column semi_stiff_large local_area_change) |
-  awk -F, '{ printf "| %.1f | %.3f%% | %.3f%% | %.3f%% | %.3f%% |\n", 1000 * $1, 100 * $2, 100 * $3, 100 * $4, 100 * $5 }'
+  awk -F, '{ printf "%.1f %.3f%% %.3f%% %.3f%% %.3f%%\n", 1000 * $1, 100 * $2, 100 * $3, 100 * $4, 100 * $5 }' |
+  while read -r -a words; do results_row "$ranks" "${words[@]}"; done

@@ -25,7 +25,10 @@
 # against G = 2.5, 5.5 and 10 pN/µm in the 10 µm capillary.
 #
 # Writes each run to output/deformation_map/D<diameter>_U<speed>_G<G>/ and
-# the map to output/deformation_map/deformation_map.csv:
+# the map to output/deformation_map/deformation_map.csv, and when it is
+# done copies the map to doc/results/deformation_map/deformation_map.csv
+# (RBC_IFEM_RESULTS/deformation_map.csv if that is set; benchmarks/common.sh):
+#   commit, date, source (the run's, doc/results/README.md),
 #   diameter [µm], mean_speed [µm/s], shear_modulus [pN/µm],
 #   capillary_number, time_step [s], dm_start, dm_end, dl_start, dl_end
 #   [µm³ s⁻¹ Torr⁻¹] (at t = 0, after any squeeze, and at the end),
@@ -38,6 +41,7 @@
 # ranks.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
+source "$here/benchmarks/common.sh"
 exe=$(realpath "${1:-$here/build/rbc-ifem}")
 ranks=${2:-1}
 points=${3:-}
@@ -68,7 +72,7 @@ column() {
 }
 
 csv=$out/deformation_map.csv
-echo "diameter,mean_speed,shear_modulus,capillary_number,time_step,dm_start,dm_end,dl_start,dl_end,dm_change,dl_change,dm_last_change,dl_last_change,duration,deformation_index,cell_speed,wall_gap,seconds,steady" >"$csv"
+echo "commit,date,source,diameter,mean_speed,shear_modulus,capillary_number,time_step,dm_start,dm_end,dl_start,dl_end,dm_change,dl_change,dm_last_change,dl_last_change,duration,deformation_index,cell_speed,wall_gap,seconds,steady" >"$csv"
 
 # run_to STEPS RESUME: run the point's prm file (the variables below) up to
 # STEPS steps, from its last checkpoint if RESUME is true; the log appends.
@@ -139,9 +143,13 @@ while read -r diameter speed shear; do
       -v ddm="$(last_change "$dm" dm_total)" -v ddl="$(last_change "$dm" dl_total)" \
       -v di="$(column "$cells" deformation_index last)" -v gap="$(column "$cells" wall_gap last)" \
       -v v="$(column "$dir/flow.csv" frame_velocity last)" -v s="$seconds" -v steady="$steady" \
-      'BEGIN { printf "%s,%s,%s,%.4f,%s,%.6f,%.6f,%.6f,%.6f,%.5f,%.5f,%.5f,%.5f,%.4g,%.4f,%.1f,%.4f,%s,%s\n",
-                D, U, G, 1.2e-3 * U / G, dt, dm0, dm5, dl0, dl5, dm5 / dm0 - 1, dl5 / dl0 - 1,
+      -v provenance="$(csv_field "$results_commit"),$(csv_field "$results_date"),$(csv_field "$results_source")" \
+      'BEGIN { printf "%s,%s,%s,%s,%.4f,%s,%.6f,%.6f,%.6f,%.6f,%.5f,%.5f,%.5f,%.5f,%.4g,%.4f,%.1f,%.4f,%s,%s\n",
+                provenance, D, U, G, 1.2e-3 * U / G, dt, dm0, dm5, dl0, dl5, dm5 / dm0 - 1, dl5 / dl0 - 1,
                 ddm, ddl, T, di, v, gap, s, steady }' >>"$csv"
   tail -1 "$csv"
 done < <(if [ -n "$points" ]; then cat "$points"; else default_points; fi)
-echo "wrote $csv"
+stored=${RBC_IFEM_RESULTS:-$here/doc/results/deformation_map}
+mkdir -p "$stored"
+cp "$csv" "$stored/deformation_map.csv"
+echo "wrote $csv and $stored/deformation_map.csv"

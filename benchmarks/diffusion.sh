@@ -11,8 +11,9 @@
 # assembly (of it: AMG setup), solve and output,
 # with the peak memory of the largest rank. A second table: the cut cells'
 # DM and CG iterations at band refinements 1 and 2 against the weight of the
-# ghost penalty (Diffusion/Ghost penalty). RBC_IFEM defaults to
-# build/rbc-ifem, RANKS to 1.
+# ghost penalty (Diffusion/Ghost penalty). The rows are added to
+# doc/results/benchmarks/diffusion.csv and diffusion_ghost_penalty.csv
+# (benchmarks/common.sh). RBC_IFEM defaults to build/rbc-ifem, RANKS to 1.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 benchmark_setup "$@"
@@ -22,8 +23,9 @@ solve_summary() {
   sed -n 's/.*: \([0-9]*\) DoFs, \([0-9]*\) solver iterations.*DM \([0-9.]*\) .*/\1 \2 \3/p' log.txt
 }
 
-echo "| method | surface, band refinements | DoFs | solver its | DM [µm³ s⁻¹ Torr⁻¹] | mesh [s] | setup [s] | of it: point location or level set [s] | assembly [s] | of it: AMG setup [s] | solve [s] | total without output [s] | output [s] | peak memory [MB] |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+results_table diffusion ranks method "surface, band refinements" DoFs "solver its" "DM [µm³ s⁻¹ Torr⁻¹]" "mesh [s]" \
+  "setup [s]" "of it: point location or level set [s]" "assembly [s]" "of it: AMG setup [s]" "solve [s]" \
+  "total without output [s]" "output [s]" "peak memory [MB]"
 for run in "Lagrange multiplier:1:3:3" "Lagrange multiplier:1:4:4" "cut cell:2:4:1" "cut cell:2:4:2"; do
   IFS=: read -r method degree surface band <<<"$run"
   write_seven_cells_prm "$method" "$degree" "$surface" "$band"
@@ -33,19 +35,20 @@ for run in "Lagrange multiplier:1:3:3" "Lagrange multiplier:1:4:4" "cut cell:2:4
   located=$(awk -F, '$1 ~ /"diffusion: point location"|"diffusion: level set"/ {t += $3} END {printf "%.2f", t}' out/timing.csv)
   setup=$(awk -F, '$1 ~ /"diffusion: setup"|"diffusion: membrane sampling"/ {t += $3} END {printf "%.2f", t}' out/timing.csv)
   total=$(awk -F, '$1 ~ /"diffusion mesh"|"diffusion: setup"|"diffusion: membrane sampling"|"diffusion: assemble"|"diffusion: solve"/ {t += $3} END {printf "%.2f", t}' out/timing.csv)
-  echo "| $method | $surface, $band | $dofs | $its | $dm | $(seconds "diffusion mesh") | $setup | $located | $(seconds "diffusion: assemble") | $(seconds "diffusion: AMG setup") | $(seconds "diffusion: solve") | $total | $(seconds "diffusion: output") | $(( $(cat memory.txt) / 1024 )) |"
+  results_row "$ranks" "$method" "$surface, $band" "$dofs" "$its" "$dm" "$(seconds "diffusion mesh")" "$setup" "$located" \
+    "$(seconds "diffusion: assemble")" "$(seconds "diffusion: AMG setup")" "$(seconds "diffusion: solve")" "$total" \
+    "$(seconds "diffusion: output")" $(($(cat memory.txt) / 1024))
 done
 
 # The ghost penalty's weight against the cut cells' DM and CG iterations
 # (doc/diffusion.md, "Parameters"): 13.971 is the limit.
 echo
-echo "| ghost penalty | band refinements | DoFs | CG its | DM [µm³ s⁻¹ Torr⁻¹] | from 13.971 |"
-echo "|---|---|---|---|---|---|"
+results_table diffusion_ghost_penalty ranks "ghost penalty" "band refinements" DoFs "CG its" "DM [µm³ s⁻¹ Torr⁻¹]" "from 13.971"
 for band in 1 2; do
   write_seven_cells_prm "cut cell" 2 4 "$band"
   for ghost in 0.05 0.02 0.01 0.005 0.002; do
     mpirun -np "$ranks" "$exe" run.prm --set "Diffusion/Ghost penalty=$ghost" > log.txt
     read -r dofs its dm <<<"$(solve_summary)"
-    echo "| $ghost | $band | $dofs | $its | $dm | $(awk -v d="$dm" 'BEGIN { printf "%+.3f%%", 100 * (d / 13.971 - 1) }') |"
+    results_row "$ranks" "$ghost" "$band" "$dofs" "$its" "$dm" "$(awk -v d="$dm" 'BEGIN { printf "%+.3f%%", 100 * (d / 13.971 - 1) }')"
   done
 done

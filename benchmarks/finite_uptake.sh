@@ -12,7 +12,9 @@
 # 2. the cytoplasm's diffusivity (one cell): DL at 1/4, 2/7 (the default,
 #    700 µm²/s), 1 and 10 times the plasma's 2453 µm²/s, beside the lumped
 #    1/DM + 1/(θ V_c), which assumes the cell's inside well mixed.
-# RBC_IFEM defaults to build/rbc-ifem, RANKS to 1.
+# The rows are added to doc/results/benchmarks/finite_uptake_mesh.csv and
+# finite_uptake_cytoplasm.csv (benchmarks/common.sh). RBC_IFEM defaults to
+# build/rbc-ifem, RANKS to 1.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 benchmark_setup "$@"
@@ -35,8 +37,7 @@ run() {
     'NR == 2 { printf "%.6f %.6f %.6f %.1f\n", $8, $9, $10, s }' out/uptake.csv
 }
 
-echo "| cells | band refinements | DM | DL | DL / DL(finest) - 1 | seconds | peak memory [MB] |"
-echo "|---|---|---|---|---|---|---|"
+results_table finite_uptake_mesh ranks cells "band refinements" DM DL "DL / DL(finest) - 1" seconds "peak memory [MB]"
 for n in 1 7; do
   bands="1 2 3"
   [ "$n" = 1 ] || bands="1 2"
@@ -48,14 +49,14 @@ for n in 1 7; do
   done
   for row in "${rows[@]}"; do
     read -r cells band dm d seconds memory <<<"$row"
-    echo "| $cells | $band | $dm | $d | $(awk -v a="$d" -v b="$finest" 'BEGIN { printf "%+.3f%%", 100 * (a / b - 1) }') | $seconds | $memory |"
+    results_row "$ranks" "$cells" "$band" "$dm" "$d" "$(awk -v a="$d" -v b="$finest" 'BEGIN { printf "%+.3f%%", 100 * (a / b - 1) }')" \
+      "$seconds" "$memory"
   done
 done
 
 echo
-echo "| cytoplasm D [µm²/s] | DM | DL | lumped 1/DM + 1/(θ V_c) | lumped / DL - 1 |"
-echo "|---|---|---|---|---|"
+results_table finite_uptake_cytoplasm ranks "cytoplasm D [µm²/s]" DM DL "lumped 1/DM + 1/(θ V_c)" "lumped / DL - 1"
 for diffusivity in 613 700 2453 24530; do
   read -r dm d lumped seconds <<<"$(run 1 1 "$diffusivity")"
-  echo "| $diffusivity | $dm | $d | $lumped | $(awk -v a="$lumped" -v b="$d" 'BEGIN { printf "%+.1f%%", 100 * (a / b - 1) }') |"
+  results_row "$ranks" "$diffusivity" "$dm" "$d" "$lumped" "$(awk -v a="$lumped" -v b="$d" 'BEGIN { printf "%+.1f%%", 100 * (a / b - 1) }')"
 done

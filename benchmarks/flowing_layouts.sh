@@ -14,6 +14,10 @@
 #     study's 48 runs (1600 steps, 11 DM solves each; 7 layouts per N, 6
 #     for N = 1, whose uniform and clustered cells coincide) they are
 #     interpolated linearly in N.
+# The quick study's time and the full study's probes and estimate are added
+# to doc/results/benchmarks/flowing_layouts_quick.csv,
+# flowing_layouts_probes.csv and flowing_layouts_estimate.csv
+# (benchmarks/common.sh).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 source "$(dirname "$0")/common.sh"
@@ -25,10 +29,13 @@ mpirun -np "$ranks" "$exe" "$here/prm/flowing_layouts_quick.prm" >quick.log 2>&1
   { tail -20 quick.log; exit 1; }
 quick=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { print b - a }')
 n_runs=$(grep -c "^run .* of .*, in " quick.log || true)
-printf "quick study: %.0f s (%.1f min) on %s rank(s), %s flowing runs\n" "$quick" "$(awk -v s="$quick" 'BEGIN { print s / 60 }')" "$ranks" "$n_runs"
+results_table flowing_layouts_quick ranks "flowing runs" "wall [s]" "wall [min]" section "section [s]" "share of the sections"
 awk -F, 'FNR > 1 { gsub(/"/, "", $1); t[$1] += $3; total += $3 }
-         END { for (s in t) if (t[s] / total > 0.02) printf "  %7.1f s  %5.1f%%  %s\n", t[s], 100 * t[s] / total, s }' \
-  output/flowing_layouts_quick/*/timing.csv | sort -rn
+         END { for (s in t) if (t[s] / total > 0.02) printf "%.1f\t%.1f%%\t%s\n", t[s], 100 * t[s] / total, s }' \
+  output/flowing_layouts_quick/*/timing.csv | sort -rn | while IFS=$'\t' read -r seconds share section; do
+  results_row "$ranks" "$n_runs" "$(printf '%.0f' "$quick")" "$(awk -v s="$quick" 'BEGIN { printf "%.1f", s / 60 }')" \
+    "$section" "$seconds" "$share"
+done
 [ -n "$keep" ] && { rm -rf "$keep"; mkdir -p "$(dirname "$keep")"; cp -r output/flowing_layouts_quick "$keep"; }
 
 # One run of the full study's mesh: N cells of KIND, 40 steps, DM at the end.
@@ -62,10 +69,14 @@ PRM
 { probe uniform 1; probe uniform 4; probe clustered 7; } >probes.txt
 echo
 echo "full study (prm/flowing_layouts.prm), measured on its mesh over 40 steps:"
-echo "| N | s per step | s per DM solve |"
-echo "|---|---|---|"
-awk '{ printf "| %d | %.3f | %.2f |\n", $1, $2, $3 }' probes.txt
-awk '{ n[NR] = $1; s[NR] = $2; d[NR] = $3; m = NR }
+results_table flowing_layouts_probes ranks N "s per step" "s per DM solve"
+while read -r n step dm; do
+  results_row "$ranks" "$n" "$(printf '%.3f' "$step")" "$(printf '%.2f' "$dm")"
+done <probes.txt
+read -r total hours < <(awk '{ n[NR] = $1; s[NR] = $2; d[NR] = $3; m = NR }
      function at(x, v,   i) { for (i = 1; i < m; ++i) if (x <= n[i + 1]) return v[i] + (v[i + 1] - v[i]) * (x - n[i]) / (n[i + 1] - n[i]); return v[m] }
      END { for (N = 1; N <= 7; ++N) { runs = N == 1 ? 6 : 7; total += runs * (1600 * at(N, s) + 11 * at(N, d)) }
-           printf "estimated full study: 48 runs, %.0f s = %.1f hours on the same ranks\n", total, total / 3600 }' probes.txt
+           printf "%.0f %.1f\n", total, total / 3600 }' probes.txt)
+echo
+results_table flowing_layouts_estimate ranks runs "estimated full study [s]" "estimated full study [h]"
+results_row "$ranks" 48 "$total" "$hours"

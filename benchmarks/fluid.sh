@@ -9,16 +9,17 @@
 # smoothers and coarse factorisation), and per time step the residual (one
 # matrix-free pass), FGMRES seconds and iterations, for the first step from
 # rest (the full problem) and a later step (a small change, as in a coupled
-# run). Prints a Markdown table. RBC_IFEM defaults to build/rbc-ifem, RANKS
-# to 1.
+# run). Prints a Markdown table and adds its rows to
+# doc/results/benchmarks/fluid.csv (benchmarks/common.sh). RBC_IFEM defaults
+# to build/rbc-ifem, RANKS to 1.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 benchmark_setup "${1:-}" "${2:-}"
 levels=("${@:3}")
 [ ${#levels[@]} -gt 0 ] || levels=(1 2 3)
 
-echo "| refinements | DoFs | velocity nodes | multigrid levels | setup [s] | step 1: FGMRES its | step 2: FGMRES its | solve per iteration [ms] | residual per step [ms] | peak memory [MB] |"
-echo "|---|---|---|---|---|---|---|---|---|---|"
+results_table fluid ranks refinements DoFs "velocity nodes" "multigrid levels" "setup [s]" "step 1: FGMRES its" \
+  "step 2: FGMRES its" "solve per iteration [ms]" "residual per step [ms]" "peak memory [MB]"
 for level in "${levels[@]}"; do
   cat > run.prm <<PRM
 set Experiment = flow
@@ -41,5 +42,6 @@ PRM
   per_iteration=$(awk -F, -v n=$((its1 + its2)) '$1 == "\"fluid: solve\"" {printf "%.0f", 1000 * $3 / n}' out/timing.csv)
   residual=$(awk -F, '$1 == "\"fluid: residual\"" {printf "%.1f", 1000 * $3 / $2}' out/timing.csv)
   read -r n_dofs n_velocity <<<"$dofs"
-  echo "| $level | $n_dofs | $((n_velocity / 3)) | $levels | $(seconds "fluid: setup") | $its1 | $its2 | $per_iteration | $residual | $(( $(cat memory.txt) / 1024 )) |"
+  results_row "$ranks" "$level" "$n_dofs" $((n_velocity / 3)) "$levels" "$(seconds "fluid: setup")" "$its1" "$its2" \
+    "$per_iteration" "$residual" $(($(cat memory.txt) / 1024))
 done

@@ -7,14 +7,15 @@
 # Per run: membrane points, fluid DoFs, seconds per step, the shares of a
 # step's time (fluid solve, fluid residual assembly, membrane forces, the
 # coupling's spread + interpolate + move and place), seconds per diffusion
-# solve (mesh, setup, assembly, solve, output). Prints a Markdown table.
+# solve (mesh, setup, assembly, solve, output). Prints a Markdown table and
+# adds its rows to doc/results/benchmarks/ifem.csv (benchmarks/common.sh).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 source "$(dirname "$0")/common.sh"
 benchmark_setup "$@"
 
-echo "| surface refinements | membrane points | fluid DoFs | s per step | fluid solve | fluid residual | membrane forces | coupling | s per DM solve |"
-echo "|---|---|---|---|---|---|---|---|---|"
+results_table ifem ranks "surface refinements" "membrane points" "fluid DoFs" "s per step" "fluid solve" \
+  "fluid residual" "membrane forces" coupling "s per DM solve"
 for run in "3 2e-5" "4 1.5e-5"; do
   read -r level step <<<"$run"
   { cat "$here/prm/default.prm"
@@ -40,12 +41,13 @@ PRM
   points=$(sed -n 's/.*cells: 1, \([0-9]*\) membrane points.*/\1/p' log.txt)
   dofs=$(sed -n 's/.*fluid mesh: [0-9]* cells, \([0-9]*\) DoFs.*/\1/p' log.txt)
   per_step=$(sed -n 's/.* steps in .* s, \(.*\) s per step/\1/p' log.txt)
-  awk -F, -v level="$level" -v points="$points" -v dofs="$dofs" -v per_step="$per_step" '
+  read -r -a shares < <(awk -F, -v per_step="$per_step" '
     NR > 1 { gsub(/"/, "", $1); t[$1] = $3; loop += ($1 ~ /^(fluid: solve|fluid: assemble residual|membrane forces|coupling)/) ? $3 : 0
              if ($1 ~ /^coupling/) coupling += $3
              if ($1 ~ /^diffusion/) diffusion += $3 }
     END { total = 100 * per_step
-          printf "| %s | %s | %s | %.3f | %.0f%% | %.0f%% | %.0f%% | %.0f%% | %.1f |\n", level, points, dofs, per_step,
+          printf "%.3f %.0f%% %.0f%% %.0f%% %.0f%% %.1f\n", per_step,
                  100 * t["fluid: solve"] / total, 100 * t["fluid: assemble residual"] / total,
-                 100 * t["membrane forces"] / total, 100 * coupling / total, diffusion / 2 }' out/timing.csv
+                 100 * t["membrane forces"] / total, 100 * coupling / total, diffusion / 2 }' out/timing.csv)
+  results_row "$ranks" "$level" "$points" "$dofs" "${shares[@]}"
 done

@@ -12,7 +12,10 @@
 #
 # Prints, at every 1.2 ms, cells.csv's local_area_change (max over the
 # membrane cells of |A/A0 - 1|) and the deformation index of both runs, and
-# each run's wall time. About 6 minutes on 2 ranks.
+# each run's wall time, and adds them to
+# doc/results/benchmarks/local_area_change.csv and
+# local_area_change_wall.csv (benchmarks/common.sh). About 6 minutes on 2
+# ranks.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 source "$here/benchmarks/common.sh"
@@ -57,11 +60,13 @@ run surface5 5 2
 column() { awk -F, -v name="$2" 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == name) c = i; next } { print $c }' "$1/cells.csv"; }
 echo "## K = 500 pN/µm, semi-implicit at 4e-5 s: the largest local area change"
 echo
-echo "| t [ms] | 1536 membrane cells | 6144 membrane cells | deformation index, 1536 | deformation index, 6144 |"
-echo "|---|---|---|---|---|"
+results_table local_area_change ranks "t [ms]" "1536 membrane cells" "6144 membrane cells" \
+  "deformation index, 1536" "deformation index, 6144"
 paste -d, <(column surface4 time) <(column surface4 local_area_change) <(column surface5 local_area_change) \
   <(column surface4 deformation_index) <(column surface5 deformation_index) |
-  awk -F, '{ printf "| %.1f | %.3f%% | %.3f%% | %.6f | %.6f |\n", 1000 * $1, 100 * $2, 100 * $3, $4, $5 }'
+  awk -F, '{ printf "%.1f %.3f%% %.3f%% %.6f %.6f\n", 1000 * $1, 100 * $2, 100 * $3, $4, $5 }' |
+  while read -r -a row; do results_row "$ranks" "${row[@]}"; done
 echo
-printf 'wall time: %.1f s (1536 cells), %.1f s (6144 cells) on %s rank(s)\n' \
-  "$(cat surface4.seconds)" "$(cat surface5.seconds)" "$ranks"
+results_table local_area_change_wall ranks "membrane cells" "wall [s]"
+results_row "$ranks" 1536 "$(printf '%.1f' "$(cat surface4.seconds)")"
+results_row "$ranks" 6144 "$(printf '%.1f' "$(cat surface5.seconds)")"

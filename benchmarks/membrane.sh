@@ -6,13 +6,14 @@
 # on Evans-Fung meshes of 2, 3 and 4 surface refinements, and a Q2 membrane
 # with as many DoFs as the Q1 one of 3 refinements. Per run: cells, DoFs, L-BFGS iterations in all, seconds per
 # iteration (one energy-and-force evaluation and its line search), the
-# axial diameter at 200 pN, and the total time. Prints a Markdown table.
+# axial diameter at 200 pN, and the total time. Prints a Markdown table and
+# adds its rows to doc/results/benchmarks/membrane.csv (benchmarks/common.sh).
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 benchmark_setup "$@"
 
-echo "| degree | refinements | cells | DoFs | L-BFGS iterations | ms per iteration | axial diameter at 200 pN [µm] | total [s] |"
-echo "|---|---|---|---|---|---|---|---|"
+results_table membrane degree refinements cells DoFs "L-BFGS iterations" "ms per iteration" \
+  "axial diameter at 200 pN [µm]" "total [s]"
 for run in "1 2" "1 3" "1 4" "2 2"; do
   read -r degree level <<<"$run"
   cat > run.prm <<PRM
@@ -33,6 +34,5 @@ PRM
   iterations=$(awk -F, 'NR > 1 {n += $6} END {print n}' out/stretch.csv)
   per_iteration=$(awk -F, -v n="$iterations" '$1 == "\"equilibrium\"" {printf "%.1f", 1000 * $3 / n}' out/timing.csv)
   axial=$(awk -F, 'END {printf "%.3f", $2}' out/stretch.csv)
-  printf "| %s | %s | %s | %s | %s | %s | %s | %.0f |\n" "$degree" "$level" "$cells" "$dofs" \
-    "$iterations" "$per_iteration" "$axial" "$total"
+  results_row "$degree" "$level" "$cells" "$dofs" "$iterations" "$per_iteration" "$axial" "$(printf '%.0f' "$total")"
 done

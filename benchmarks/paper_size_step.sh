@@ -11,9 +11,12 @@
 # other in the same run, so that two builds (before and after a change)
 # compare side by side on the same machine load. Prints per program the
 # seconds per warm step, the FGMRES iterations of steps 5 to 25 as the
-# progress lines give them, and the membrane forces' seconds per step.
+# progress lines give them, and the membrane forces' seconds per step, and
+# adds the rows to doc/results/benchmarks/paper_size_step.csv
+# (benchmarks/common.sh) with the git commit each program was built from.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
+source "$here/benchmarks/common.sh"
 ranks=${1:?usage: paper_size_step.sh RANKS RBC_IFEM [RBC_IFEM...]}
 shift
 programs=()
@@ -34,14 +37,15 @@ run() {
     --set "Immersed cells/Checkpoint interval=0" \
     --set "Time/Output interval=1000" --set "Output directory=$2" > "$2.log" 2>&1
 }
-echo "| program | ranks | warm step [s] | FGMRES iterations at steps 5, 10, ..., 25 | membrane forces per step [s] |"
-echo "|---|---|---|---|---|"
+results_table paper_size_step program "built from" ranks "warm step [s]" \
+  "FGMRES iterations at steps 5, 10, ..., 25" "membrane forces per step [s]"
 for program in "${programs[@]}"; do
   run "$program" out
   warm=$(sed -n 's/.*step \(5\|25\) of 25.*\[wall \([0-9.]*\) s.*/\2/p' out.log |
     awk 'NR == 1 {a = $1} NR == 2 {printf "%.3f", ($1 - a) / 20}')
   iterations=$(awk -F, 'NR > 1 {printf "%s%s", sep, $8; sep = " "}' out/flow.csv)
   forces=$(awk -F, '$1 == "\"membrane forces\"" {printf "%.3f", $3 / $2}' out/timing.csv)
-  printf "| %s | %d | %s | %s | %s |\n" "$program" "$ranks" "$warm" "$iterations" "$forces"
+  results_row "$program" "$("$program" --version | sed -n 's/.*(git \(.*\)).*/\1/p')" "$ranks" "$warm" \
+    "$iterations" "$forces"
   rm -rf out
 done

@@ -8,7 +8,8 @@
 # table against Haberman & Sayre (1958) and the body-fitted solution
 # (sphere-in-tube-reference): the free sphere's velocity over the
 # centre-line velocity U/U_c, and the drag on the held sphere over
-# 6πμaU_c, with U_c = 2ū = 1000 µm/s and μ = 1.2e-3 pN s/µm².
+# 6πμaU_c, with U_c = 2ū = 1000 µm/s and μ = 1.2e-3 pN s/µm². The rows are
+# added to doc/results/benchmarks/sphere_in_tube.csv (benchmarks/common.sh).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 source "$(dirname "$0")/common.sh"
@@ -36,20 +37,22 @@ run() {
   rm -rf out
 }
 
-echo "| λ = a/R | fluid h at the sphere [µm] | U/U_c | Haberman-Sayre | body-fitted | vs H-S | vs body-fitted | F/(6πμaU_c) | Haberman-Sayre | body-fitted | vs H-S | vs body-fitted |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
+results_table sphere_in_tube ranks "λ = a/R" "fluid h at the sphere [µm]" U/U_c "U/U_c, Haberman-Sayre" \
+  "U/U_c, body-fitted" "U/U_c vs H-S" "U/U_c vs body-fitted" "F/(6πμaU_c)" "F/(6πμaU_c), Haberman-Sayre" \
+  "F/(6πμaU_c), body-fitted" "F vs H-S" "F vs body-fitted"
 for run in "0.3 1" "0.5 1" "0.5 2"; do
   read -r lambda level <<<"$run"
   read -r h velocity _ <<<"$(run "free_$lambda" "$level")"
   read -r _ _ force <<<"$(run "held_$lambda" "$level")"
   read -r _ body_held body_ratio <<<"$(body_fitted "$lambda")"
-  awk -v l="$lambda" -v h="$h" -v u="$velocity" -v f="$force" -v bh="$body_held" -v bu="$body_ratio" \
+  read -r -a row < <(awk -v l="$lambda" -v h="$h" -v u="$velocity" -v f="$force" -v bh="$body_held" -v bu="$body_ratio" \
     "$haberman_sayre"'
   BEGIN {
     uc = 1000; mu = 1.2e-3; a = 5 * l; pi = 3.14159265358979
     g = hs_velocity_ratio(l); k = hs_drag_factor(l)
     ratio = u / uc; drag = -f / (6 * pi * mu * a * uc)
-    printf "| %s | %s | %.4f | %.4f | %.4f | %+.1f%% | %+.1f%% | %.3f | %.3f | %.3f | %+.1f%% | %+.1f%% |\n",
+    printf "%s %s %.4f %.4f %.4f %+.1f%% %+.1f%% %.3f %.3f %.3f %+.1f%% %+.1f%%\n",
            l, h, ratio, g, bu, 100 * (ratio / g - 1), 100 * (ratio / bu - 1),
-           drag, k * g, bh, 100 * (drag / (k * g) - 1), 100 * (drag / bh - 1) }'
+           drag, k * g, bh, 100 * (drag / (k * g) - 1), 100 * (drag / bh - 1) }')
+  results_row "$ranks" "${row[@]}"
 done

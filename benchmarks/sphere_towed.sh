@@ -13,9 +13,10 @@
 # the tether stiffness scaled with them, to t = 0.075 ms. LEVELS defaults
 # to "1 2" (about 15 minutes on one core); "1 2 3" adds the finest (well
 # over an hour more). Prints a Markdown table against Haberman & Sayre and
-# the body-fitted solution (sphere-in-tube-reference), and keeps
+# the body-fitted solution (sphere-in-tube-reference), adds its rows to
+# doc/results/benchmarks/sphere_towed.csv (benchmarks/common.sh), and keeps
 # the runs in OUTPUT_DIRECTORY (default output/sphere_towed) for
-# doc/plot_sphere_axis.py.
+# doc/scripts/plot_sphere_axis.py.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 out=$(realpath -m "${3:-$here/output/sphere_towed}")
@@ -47,20 +48,23 @@ read -r body_towed body_held body_ratio <<<"$(body_fitted 0.5)"
 awk -v bk="$body_towed" -v bh="$body_held" -v bu="$body_ratio" "$haberman_sayre"'
 BEGIN {
   g = hs_velocity_ratio(0.5); k = hs_drag_factor(0.5)
-  printf "| fluid h at the sphere [µm] | membrane points | towed F/(6πμaU) | vs H-S K = %.3f | vs body-fitted %.3f | held F/(6πμaU_c) | vs H-S %.3f | vs body-fitted %.3f | U/U_c = F_held/F_towed | vs H-S %.4f | vs body-fitted %.4f |\n",
+  printf "references at λ = 0.5: towed K %.3f (H-S), %.3f (body-fitted); held %.3f (H-S), %.3f (body-fitted); U/U_c %.4f (H-S), %.4f (body-fitted)\n\n",
          k, bk, k * g, bh, g, bu }'
-echo "|---|---|---|---|---|---|---|---|---|---|---|"
+results_table sphere_towed ranks "fluid h at the sphere [µm]" "membrane points" "towed F/(6πμaU)" "towed vs H-S" \
+  "towed vs body-fitted" "held F/(6πμaU_c)" "held vs H-S" "held vs body-fitted" "U/U_c = F_held/F_towed" \
+  "U/U_c vs H-S" "U/U_c vs body-fitted"
 for level in $levels; do
   towed=$(run "towed_$level" "$level" "set Inlet mean speed = 0\nset Frame velocity = 1000")
   held=$(run "held_$level" "$level" "")
-  awk -v level="$level" -v towed="$towed" -v held="$held" \
+  read -r -a row < <(awk -v level="$level" -v towed="$towed" -v held="$held" \
       -v bk="$body_towed" -v bh="$body_held" -v bu="$body_ratio" "$haberman_sayre"'
   BEGIN {
     l = 0.5; u = 1000; mu = 1.2e-3; a = 2.5; pi = 3.14159265358979; f0 = 6 * pi * mu * a * u
     g = hs_velocity_ratio(l); k = hs_drag_factor(l)
     kt = towed / f0; kh = -held / f0; ratio = kh / kt
-    printf "| %s | %d | %.3f | %+.1f%% | %+.1f%% | %.3f | %+.1f%% | %+.1f%% | %.4f | %+.1f%% | %+.1f%% |\n",
+    printf "%s %d %.3f %+.1f%% %+.1f%% %.3f %+.1f%% %+.1f%% %.4f %+.1f%% %+.1f%%\n",
            0.625 / 2^(level - 1), 6 * 4^(level + 2) + 2,
            kt, 100 * (kt / k - 1), 100 * (kt / bk - 1), kh, 100 * (kh / (k * g) - 1), 100 * (kh / bh - 1),
-           ratio, 100 * (ratio / g - 1), 100 * (ratio / bu - 1) }'
+           ratio, 100 * (ratio / g - 1), 100 * (ratio / bu - 1) }')
+  results_row "$ranks" "${row[@]}"
 done

@@ -10,8 +10,9 @@
 # on the same ranks in this one run. The seconds of one warm step are the
 # difference of two runs, one step more against one step less, so that
 # setup and output are left out on both sides. Prints both and
-# `ratio: X`, step-70's seconds per step over ours. About 4 minutes on 2
-# ranks.
+# `ratio: X`, step-70's seconds per step over ours, and adds them to
+# doc/results/benchmarks/step70_anchor.csv (benchmarks/common.sh). About 4
+# minutes on 2 ranks.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 source "$here/benchmarks/common.sh"
@@ -68,9 +69,11 @@ ours() {
 step70_one=$(step70 2); step70_two=$(step70 3)
 ours_few=$(ours 5); ours_more=$(ours 25)
 step70_dofs=$(sed -n 's/.*Number of degrees of freedom: *\([0-9]*\).*/\1/p' step70.log | head -1)
-awk -v a="$step70_one" -v b="$step70_two" -v c="$ours_few" -v d="$ours_more" \
-    -v dofs="$step70_dofs" -v ranks="$ranks" 'BEGIN {
-  s70 = b - a; s = (d - c) / 20;
-  printf "step-70 (3-D, %s DoFs), %d ranks: %.2f s per step\n", dofs, ranks, s70;
-  printf "rbc-ifem paper-size parachute (244862 DoFs), %d ranks: %.3f s per step\n", ranks, s;
-  printf "ratio: %.1f\n", s70 / s }'
+read -r s70 ours ratio < <(awk -v a="$step70_one" -v b="$step70_two" -v c="$ours_few" -v d="$ours_more" 'BEGIN {
+  s70 = b - a; s = (d - c) / 20; printf "%.2f %.3f %.1f\n", s70, s, s70 / s }')
+echo "step-70 (3-D, $step70_dofs DoFs), $ranks ranks: $s70 s per step"
+echo "rbc-ifem paper-size parachute (244862 DoFs), $ranks ranks: $ours s per step"
+echo "ratio: $ratio"
+echo
+results_table step70_anchor ranks "step-70 DoFs" "step-70 [s per step]" "rbc-ifem DoFs" "rbc-ifem [s per step]" ratio
+results_row "$ranks" "$step70_dofs" "$s70" 244862 "$ours" "$ratio"

@@ -5,14 +5,14 @@
 # program prints: prm/default.prm with membranes of 3 surface refinements,
 # no DM solves, up to 300 steps, for the area dilation modulus K and time
 # step of each row. Prints a Markdown table: the estimate, Δt over it, and
-# the step at which the run stopped as diverged (or "stable").
+# the step at which the run stopped as diverged (or "stable"), and adds the
+# rows to doc/results/benchmarks/time_step_limit.csv (benchmarks/common.sh).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 source "$(dirname "$0")/common.sh"
 benchmark_setup "$@"
 
-echo "| K [pN/µm] | estimate [s] | Δt [s] | Δt / estimate | result |"
-echo "|---|---|---|---|---|"
+results_table time_step_limit "K [pN/µm]" "estimate [s]" "Δt [s]" "Δt / estimate" result
 for run in "500 5e-6" "50 5e-5" "50 3.5e-5" "50 2e-5"; do
   read -r modulus step <<<"$run"
   { cat "$here/prm/default.prm"
@@ -41,6 +41,6 @@ PRM
   estimate=$(sed -n 's/.*time step limit ≈ \([^ ]*\) s.*/\1/p' log.txt)
   stopped=$(sed -n 's/^rbc-ifem: stopped: step \([0-9]*\),.*/\1/p' log.txt)
   result=${stopped:+diverges at step $stopped}
-  awk -v k="$modulus" -v e="$estimate" -v dt="$step" -v r="${result:-stable, 300 steps}" \
-    'BEGIN { printf "| %s | %.2g | %s | %.2f | %s |\n", k, e, dt, dt / e, r }'
+  results_row "$modulus" "$(awk -v e="$estimate" 'BEGIN { printf "%.2g", e }')" "$step" \
+    "$(awk -v e="$estimate" -v dt="$step" 'BEGIN { printf "%.2f", dt / e }')" "${result:-stable, 300 steps}"
 done

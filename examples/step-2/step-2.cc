@@ -118,7 +118,7 @@ main(int argc, char *argv[])
     }
 
   // The table in the columns of rbc-ifem's stretch.csv, so that
-  // doc/plot_stretch.py draws it against the measurements.
+  // doc/scripts/plot_stretch.py draws it against the measurements.
   create_output_directory(parameters.output_directory, MPI_COMM_SELF);
   table.write(parameters.output_directory + "/stretch.csv");
   std::cout << "wrote " << parameters.output_directory << "/stretch.csv"

@@ -3,12 +3,12 @@ the cell against time, from the step-3.csv the program writes.
 
     /usr/bin/python3 examples/step-3/plot.py step-3-build/output/step-3.csv examples/step-3/step-3.png
 
-Run from rbc-ifem's clone: it uses doc/rbc_ifem_run.py and doc/plot_style.py
+Run from rbc-ifem's clone: it uses doc/scripts/rbc_ifem_run.py and doc/scripts/plot_style.py
 (python3-matplotlib: scripts/install-packages.sh --docs)."""
 import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "doc"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "doc", "scripts"))
 import plot_style  # noqa: E402
 from rbc_ifem_run import read_table  # noqa: E402
 

@@ -4,12 +4,12 @@ uptake_per_area.csv that step-4's observer writes.
 
     /usr/bin/python3 examples/step-4/plot.py step-4-build/output/uptake_per_area.csv examples/step-4/step-4.png
 
-Run from rbc-ifem's clone: it uses doc/rbc_ifem_run.py and doc/plot_style.py
+Run from rbc-ifem's clone: it uses doc/scripts/rbc_ifem_run.py and doc/scripts/plot_style.py
 (python3-matplotlib: scripts/install-packages.sh --docs)."""
 import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "doc"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "doc", "scripts"))
 import plot_style  # noqa: E402
 from rbc_ifem_run import read_table  # noqa: E402
 

@@ -12,7 +12,8 @@ namespace rbc_ifem
    * Experiment "flow" without cells: the plasma alone in the capillary, for
    * Time/Number of steps steps of Δt from rest. flow.csv gets a row every
    * step (time,flow_rate,pressure_drop,max_velocity,divergence_l2, then
-   * frame_velocity,newton_iterations,linear_iterations) and is written with
+   * frame_velocity,newton_iterations,linear_iterations,lab_flow_rate: the
+   * flow rate in the moving frame and in the laboratory's) and is written with
    * v and p (VTU/PVTU, flow.pvd) every Time/Output interval steps, at the
    * end, and up to the last good step if the solver fails; a progress line
    * per step.

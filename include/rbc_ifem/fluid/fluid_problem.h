@@ -290,6 +290,13 @@ namespace rbc_ifem
     /// final residual.
     std::pair<unsigned int, double>
     solve_linear_system();
+    /// measure()'s ‖∇·v‖ and largest |v| into @p measures.
+    void
+    measure_divergence_and_speed(FlowMeasures &measures) const;
+    /// measure()'s flow rates through the outlet and pressure drop from
+    /// the inlet to the outlet into @p measures.
+    void
+    measure_flow_through_ends(FlowMeasures &measures) const;
 
     const FluidParameters parameters;
     const FlowDrive       drive;

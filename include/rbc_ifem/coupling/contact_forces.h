@@ -3,6 +3,9 @@
 
 #include <rbc_ifem/coupling/cell_force.h>
 #include <rbc_ifem/coupling/parameters.h>
+// PushingForce was declared here: code that finds it through this header
+// still does.
+#include <rbc_ifem/coupling/pushing_force.h>
 #include <rbc_ifem/membrane/membrane.h>
 
 #include <memory>
@@ -199,31 +202,6 @@ namespace rbc_ifem
     const double                                  radius;
     const RepulsivePotential                      potential;
     std::vector<std::vector<double>>              reference_areas;
-  };
-
-  /**
-   * A constant force on each cell (the pushing forces of Immersed cells),
-   * spread over its points by their reference areas: E = -Σ_c F_c · Σ_i
-   * (a_i / A_c) x_i. External.
-   */
-  class PushingForce : public CellForce
-  {
-  public:
-    PushingForce(const std::vector<std::unique_ptr<Membrane>> &membranes,
-                 const std::vector<Tensor<1, 3>>              &cell_forces);
-
-    CellForceReport
-    add_forces(const std::vector<Vector<double>> &positions,
-               std::vector<Vector<double>>       &forces) const override;
-
-    std::unique_ptr<CellForceStiffness>
-    stiffness(const std::vector<Vector<double>> &positions) const override;
-
-  private:
-    const std::vector<std::unique_ptr<Membrane>> &membranes;
-    const std::vector<Tensor<1, 3>>               cell_forces;
-    /// a_i / A_c of every point.
-    std::vector<std::vector<double>> weights;
   };
 
   /**

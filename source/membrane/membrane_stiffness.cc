@@ -59,6 +59,21 @@ namespace rbc_ifem
     }
   } // namespace
 
+  /**
+   * The first derivatives by the DoFs that the stiffness chains through
+   * the sums: of A and V (the penalties' rank-one parts), and per cell of
+   * each of its nodes' sums (y, m, w).
+   */
+  struct Membrane::SumGradients
+  {
+    /// ∂A/∂x and ∂V/∂x, summed over the ranks.
+    Vector<double> area, volume;
+    /// Per cell, the 7 (n_a) × (cell DoFs) derivatives of its terms of the
+    /// sums (y, m, w) of each local node a (rows 7a to 7a + 6): only of
+    /// the cells this rank needs (cells_for_sum_gradients()).
+    std::vector<FullMatrix<double>> nodal_sums;
+  };
+
   void
   MembraneStiffness::vmult_add(Vector<double>       &dst,
                                const Vector<double> &src) const
@@ -138,13 +153,20 @@ namespace rbc_ifem
     // and tangents z = L_q x (9 numbers), so derivatives in the cell's DoFs
     // are taken in z, by forward mode per point, and chained with L_q: far
     // cheaper than forward mode over the cell.
-    //
-    // First, per cell, the first derivatives of its terms: of A and V for
-    // the penalties' rank-one parts (this rank's cells, summed over the
-    // ranks) and of each node's sums (y, m, w: 7 rows per local node) for
-    // the bending chain below (the cells around this rank's nodes).
-    const unsigned int n_a            = scalar_fe.n_dofs_per_cell(),
-                       n              = fe.n_dofs_per_cell();
+    const SumGradients gradients = sum_gradients(x);
+    add_cell_hessians(x, d, K.local);
+    add_bending_curvature(sums, gradients.nodal_sums, K.local);
+
+    if (parameters.area_penalty > 0.)
+      K.rank_one.emplace_back(parameters.area_penalty / area0, gradients.area);
+    if (parameters.volume_penalty > 0.)
+      K.rank_one.emplace_back(parameters.volume_penalty / volume0,
+                              gradients.volume);
+  }
+
+  std::vector<bool>
+  Membrane::cells_for_sum_gradients() const
+  {
     const auto [first_cell, end_cell] = share(cell_dofs.size());
     const auto [first_node, end_node] = share(n_nodes);
     std::vector<bool> needed(cell_dofs.size(), false);
@@ -152,62 +174,89 @@ namespace rbc_ifem
     for (unsigned int i = first_node; i < end_node; ++i)
       for (const auto &[c, a] : cells_around_node[i])
         needed[c] = true;
-    Vector<double> area_gradient(dof_handler.n_dofs()),
-      volume_gradient(dof_handler.n_dofs());
-    std::vector<FullMatrix<double>> sum_derivatives(cell_dofs.size());
-    {
-      using First = Sacado::Fad::SFad<double, 9>;
-      FullMatrix<double> D(n_point_integrands, 9), DL(n_point_integrands, n);
-      Vector<double>     values(n), z(9);
-      for (unsigned int c = 0; c < cell_dofs.size(); ++c)
-        {
-          if (!needed[c])
-            continue;
-          const bool own = c >= first_cell && c < end_cell;
-          x.extract_subvector_to(cell_dofs[c].begin(),
-                                 cell_dofs[c].end(),
-                                 values.begin());
-          FullMatrix<double> &J = sum_derivatives[c];
-          J.reinit(7 * n_a, n);
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-            {
-              point_maps[q].vmult(z, values);
-              std::array<First, 9> z1;
+    return needed;
+  }
+
+  Membrane::SumGradients
+  Membrane::sum_gradients(const Vector<double> &x) const
+  {
+    using First                       = Sacado::Fad::SFad<double, 9>;
+    const unsigned int n              = fe.n_dofs_per_cell();
+    const auto [first_cell, end_cell] = share(cell_dofs.size());
+    const std::vector<bool> needed    = cells_for_sum_gradients();
+    SumGradients            gradients;
+    gradients.area.reinit(dof_handler.n_dofs());
+    gradients.volume.reinit(dof_handler.n_dofs());
+    gradients.nodal_sums.resize(cell_dofs.size());
+    FullMatrix<double> D(n_point_integrands, 9), DL(n_point_integrands, n);
+    Vector<double>     values(n), z(9);
+    for (unsigned int c = 0; c < cell_dofs.size(); ++c)
+      {
+        if (!needed[c])
+          continue;
+        const bool own = c >= first_cell && c < end_cell;
+        x.extract_subvector_to(cell_dofs[c].begin(),
+                               cell_dofs[c].end(),
+                               values.begin());
+        FullMatrix<double> &J = gradients.nodal_sums[c];
+        J.reinit(7 * scalar_fe.n_dofs_per_cell(), n);
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
+          {
+            point_maps[q].vmult(z, values);
+            std::array<First, 9> z1;
+            for (unsigned int j = 0; j < 9; ++j)
+              z1[j] = First(9, j, z[j]);
+            const auto t = point_integrands(c, q, z1);
+            for (unsigned int r = 0; r < n_point_integrands; ++r)
               for (unsigned int j = 0; j < 9; ++j)
-                z1[j] = First(9, j, z[j]);
-              const auto t = point_integrands(c, q, z1);
-              for (unsigned int r = 0; r < n_point_integrands; ++r)
-                for (unsigned int j = 0; j < 9; ++j)
-                  D(r, j) = t[r].dx(j);
-              D.mmult(DL, point_maps[q]);
+                D(r, j) = t[r].dx(j);
+            D.mmult(DL, point_maps[q]);
+            if (own)
               for (unsigned int k = 0; k < n; ++k)
                 {
-                  if (own)
-                    {
-                      area_gradient[cell_dofs[c][k]] += DL(0, k);
-                      volume_gradient[cell_dofs[c][k]] += DL(1, k);
-                    }
-                  for (unsigned int a = 0; a < n_a; ++a)
-                    {
-                      const double N = shape_values(a, q);
-                      J(7 * a + 3, k) += N * DL(0, k);
-                      for (unsigned int e = 0; e < 3; ++e)
-                        {
-                          J(7 * a + 4 + e, k) += N * DL(2 + e, k);
-                          for (unsigned int alpha = 0; alpha < 2; ++alpha)
-                            J(7 * a + e, k) += shape_gradients(a, q)[alpha] *
-                                               DL(5 + 3 * alpha + e, k);
-                        }
-                    }
+                  gradients.area[cell_dofs[c][k]] += DL(0, k);
+                  gradients.volume[cell_dofs[c][k]] += DL(1, k);
                 }
+            add_nodal_sum_derivatives(q, DL, J);
+          }
+      }
+    if (n_ranks(communicator) > 1)
+      {
+        add_up_over_ranks(make_array_view(gradients.area), communicator);
+        add_up_over_ranks(make_array_view(gradients.volume), communicator);
+      }
+    return gradients;
+  }
+
+  void
+  Membrane::add_nodal_sum_derivatives(const unsigned int        q,
+                                      const FullMatrix<double> &DL,
+                                      FullMatrix<double>       &J) const
+  {
+    for (unsigned int k = 0; k < DL.n(); ++k)
+      for (unsigned int a = 0; a < scalar_fe.n_dofs_per_cell(); ++a)
+        {
+          const double N = shape_values(a, q);
+          J(7 * a + 3, k) += N * DL(0, k);
+          for (unsigned int e = 0; e < 3; ++e)
+            {
+              J(7 * a + 4 + e, k) += N * DL(2 + e, k);
+              for (unsigned int alpha = 0; alpha < 2; ++alpha)
+                J(7 * a + e, k) +=
+                  shape_gradients(a, q)[alpha] * DL(5 + 3 * alpha + e, k);
             }
         }
-    }
+  }
 
-    // The Hessian of each of this rank's cells' potentials φ_c
-    // (cell_potential()), H_c = Σ_q L_qᵀ H_q L_q, with the 9 × 9 H_q by
-    // nested forward mode.
-    const auto add_cell_hessians = [&](const auto &law) {
+  void
+  Membrane::add_cell_hessians(const Vector<double> &x,
+                              const Multipliers    &d,
+                              SparseMatrix<double> &K) const
+  {
+    const unsigned int n              = fe.n_dofs_per_cell();
+    const auto [first_cell, end_cell] = share(cell_dofs.size());
+    // The law is chosen once, outside the loop over the cells.
+    const auto add_with_law = [&](const auto &law) {
       using First  = Sacado::Fad::SFad<double, 9>;
       using Second = Sacado::Fad::SFad<First, 9>;
       FullMatrix<double> cell_matrix(n, n), H(9, 9), HL(9, n);
@@ -233,32 +282,32 @@ namespace rbc_ifem
               H.mmult(HL, L);
               L.Tmmult(cell_matrix, HL, /*adding=*/true);
             }
-          K.local.add(cell_dofs[c], cell_matrix);
+          K.add(cell_dofs[c], cell_matrix);
         }
     };
-    std::visit(add_cell_hessians, elastic_law);
-    if (n_ranks(communicator) > 1)
-      {
-        add_up_over_ranks(make_array_view(area_gradient), communicator);
-        add_up_over_ranks(make_array_view(volume_gradient), communicator);
-      }
+    std::visit(add_with_law, elastic_law);
+  }
 
-    // The bending energy's curvature in each of this rank's nodes' sums
-    // s_i = (y, m, w): J_iᵀ B_i J_i, with J_i = ∂s_i/∂x over the cells
-    // around the node.
+  void
+  Membrane::add_bending_curvature(
+    const Sums                            &sums,
+    const std::vector<FullMatrix<double>> &nodal_sum_gradients,
+    SparseMatrix<double>                  &K) const
+  {
+    const auto [first_node, end_node] = share(n_nodes);
     for (unsigned int i = first_node; i < end_node; ++i)
       {
         const std::vector<types::global_dof_index> patch = patch_dofs(i);
         FullMatrix<double> J(7, patch.size()), BJ(7, patch.size()),
           patch_matrix(patch.size(), patch.size());
         for (const auto &[c, a] : cells_around_node[i])
-          for (unsigned int k = 0; k < n; ++k)
+          for (unsigned int k = 0; k < fe.n_dofs_per_cell(); ++k)
             {
               const unsigned int column =
                 std::lower_bound(patch.begin(), patch.end(), cell_dofs[c][k]) -
                 patch.begin();
               for (unsigned int r = 0; r < 7; ++r)
-                J(r, column) += sum_derivatives[c](7 * a + r, k);
+                J(r, column) += nodal_sum_gradients[c](7 * a + r, k);
             }
         nodal_bending_hessian(sums.laplacian[i],
                               sums.mass[i],
@@ -267,13 +316,7 @@ namespace rbc_ifem
                               parameters.spontaneous_curvature)
           .mmult(BJ, J);
         J.Tmmult(patch_matrix, BJ);
-        K.local.add(patch, patch_matrix);
+        K.add(patch, patch_matrix);
       }
-
-    if (parameters.area_penalty > 0.)
-      K.rank_one.emplace_back(parameters.area_penalty / area0, area_gradient);
-    if (parameters.volume_penalty > 0.)
-      K.rank_one.emplace_back(parameters.volume_penalty / volume0,
-                              volume_gradient);
   }
 } // namespace rbc_ifem

@@ -266,6 +266,56 @@ namespace rbc_ifem
     std::vector<types::global_dof_index>
     patch_dofs(const unsigned int i) const;
 
+    /// @name The steps of stiffness()
+    /// @{
+    struct SumGradients;
+
+    /**
+     * The cells whose first derivatives this rank's share of the stiffness
+     * needs: its own cells (for ∂A/∂x and ∂V/∂x) and those around its
+     * nodes (for their bending energy).
+     */
+    std::vector<bool>
+    cells_for_sum_gradients() const;
+
+    /// The first derivatives of the sums at @p x that the stiffness chains
+    /// through, by forward mode at each quadrature point.
+    SumGradients
+    sum_gradients(const Vector<double> &x) const;
+
+    /**
+     * Add quadrature point @p q's share of the derivatives of a cell's
+     * nodal sums (y, m, w) to @p J, from @p DL, the derivatives of
+     * point_integrands() there by the cell's DoFs.
+     */
+    void
+    add_nodal_sum_derivatives(const unsigned int        q,
+                              const FullMatrix<double> &DL,
+                              FullMatrix<double>       &J) const;
+
+    /**
+     * Add to @p K the Hessian of each of this rank's cells' potentials φ_c
+     * (cell_potential()) with the sums' derivatives @p d held fixed,
+     * H_c = Σ_q L_qᵀ H_q L_q, the 9 × 9 H_q by nested forward mode.
+     */
+    void
+    add_cell_hessians(const Vector<double> &x,
+                      const Multipliers    &d,
+                      SparseMatrix<double> &K) const;
+
+    /**
+     * Add to @p K the bending energy's curvature in each of this rank's
+     * nodes' sums s_i = (y, m, w): J_iᵀ B_i J_i, with J_i = ∂s_i/∂x over the
+     * cells around the node (from @p nodal_sum_gradients, as
+     * SumGradients holds them).
+     */
+    void
+    add_bending_curvature(
+      const Sums                            &sums,
+      const std::vector<FullMatrix<double>> &nodal_sum_gradients,
+      SparseMatrix<double>                  &K) const;
+    /// @}
+
     /// The integrals of one cell at the local positions @p x, with @p law.
     template <typename Number, typename Law>
     CellTerms<Number>

@@ -7,7 +7,6 @@
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/mapping_fe_field.h>
 #include <deal.II/fe/mapping_q.h>
-#include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/numerics/data_out.h>
 
@@ -44,7 +43,16 @@ namespace rbc_ifem
     , quadrature(parameters.degree + 2)
   {
     dof_handler.distribute_dofs(fe);
+    tabulate_shape_functions();
+    number_nodes();
+    make_stiffness_sparsity();
+    interpolate_reference_surface();
+    measure_reference_surface();
+  }
 
+  void
+  Membrane::tabulate_shape_functions()
+  {
     const unsigned int n_q = quadrature.size(),
                        n_a = scalar_fe.n_dofs_per_cell();
     shape_values.reinit(n_a, n_q);
@@ -64,9 +72,14 @@ namespace rbc_ifem
           point_maps[q](3 + e, k) = shape_gradients(a, q)[0];
           point_maps[q](6 + e, k) = shape_gradients(a, q)[1];
         }
+  }
 
+  void
+  Membrane::number_nodes()
+  {
     // Nodes: numbered by the DoF of their x component.
-    std::vector<int> node_of_dof(dof_handler.n_dofs(), -1);
+    const unsigned int n_a = scalar_fe.n_dofs_per_cell();
+    std::vector<int>   node_of_dof(dof_handler.n_dofs(), -1);
     component_of_dof.resize(dof_handler.n_dofs());
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
@@ -91,22 +104,11 @@ namespace rbc_ifem
         cell_dofs.push_back(dofs);
         cell_nodes.push_back(nodes);
       }
+  }
 
-    // The stiffness couples the DoFs of all cells around a node: the
-    // bending energy of a node depends on them through its sums.
-    cells_around_node.resize(n_nodes);
-    for (unsigned int c = 0; c < cell_nodes.size(); ++c)
-      for (unsigned int a = 0; a < n_a; ++a)
-        cells_around_node[cell_nodes[c][a]].emplace_back(c, a);
-    DynamicSparsityPattern coupled(dof_handler.n_dofs());
-    for (unsigned int i = 0; i < n_nodes; ++i)
-      {
-        const std::vector<types::global_dof_index> patch = patch_dofs(i);
-        for (const types::global_dof_index row : patch)
-          coupled.add_entries(row, patch.begin(), patch.end(), true);
-      }
-    stiffness_sparsity.copy_from(coupled);
-
+  void
+  Membrane::interpolate_reference_surface()
+  {
     // X: the support points of the field, on the curved reference surface.
     const MappingQ<2, 3> mapping(std::max(2u, parameters.degree));
     std::map<types::global_dof_index, Point<3>> support_points;
@@ -114,7 +116,12 @@ namespace rbc_ifem
     reference.reinit(dof_handler.n_dofs());
     for (const auto &[dof, point] : support_points)
       reference[dof] = point[component(dof)];
+  }
 
+  void
+  Membrane::measure_reference_surface()
+  {
+    const unsigned int n_q = quadrature.size();
     for (unsigned int c = 0; c < cell_dofs.size(); ++c)
       {
         const std::vector<double> X = local_positions(c, reference);

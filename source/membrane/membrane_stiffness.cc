@@ -2,6 +2,7 @@
 
 #include "membrane_internals.h"
 
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
 
 #include <Sacado.hpp>
@@ -126,6 +127,25 @@ namespace rbc_ifem
               point.g_inverse[alpha][beta] * point.dA * tangent[beta][e];
         }
     return t;
+  }
+
+  void
+  Membrane::make_stiffness_sparsity()
+  {
+    // The stiffness couples the DoFs of all cells around a node: the
+    // bending energy of a node depends on them through its sums.
+    cells_around_node.resize(n_nodes);
+    for (unsigned int c = 0; c < cell_nodes.size(); ++c)
+      for (unsigned int a = 0; a < scalar_fe.n_dofs_per_cell(); ++a)
+        cells_around_node[cell_nodes[c][a]].emplace_back(c, a);
+    DynamicSparsityPattern coupled(dof_handler.n_dofs());
+    for (unsigned int i = 0; i < n_nodes; ++i)
+      {
+        const std::vector<types::global_dof_index> patch = patch_dofs(i);
+        for (const types::global_dof_index row : patch)
+          coupled.add_entries(row, patch.begin(), patch.end(), true);
+      }
+    stiffness_sparsity.copy_from(coupled);
   }
 
   std::vector<types::global_dof_index>

@@ -205,6 +205,28 @@ namespace rbc_ifem
     struct Sums;
     struct Multipliers;
 
+    /// @name The constructor's steps, in this order
+    /// @{
+    /// N_a and ∂N_a/∂ξ at the quadrature points, and the point maps L_q.
+    void
+    tabulate_shape_functions();
+    /// The nodes, numbered by the DoF of their x component, and every
+    /// cell's DoFs and nodes.
+    void
+    number_nodes();
+    /// cells_around_node, and the stiffness's sparsity: the DoFs of the
+    /// cells around each node coupled.
+    void
+    make_stiffness_sparsity();
+    /// X: the support points of the field, on the curved reference surface.
+    void
+    interpolate_reference_surface();
+    /// The reference metric and area element at every quadrature point,
+    /// every cell's reference area, A0 and V0.
+    void
+    measure_reference_surface();
+    /// @}
+
     /**
      * E from the sums, into @p energy, and the derivatives of E by every
      * sum: what turns the derivatives of the cell terms into E's.

@@ -18,6 +18,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <functional>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -72,12 +73,79 @@ namespace
     return run;
   }
 
+  /**
+   * What an option that asks for information prints (--help or -h,
+   * --print-parameters, --version, --list-experiments); nothing for any
+   * other argument.
+   */
+  std::function<void(std::ostream &)>
+  information(const std::string &option)
+  {
+    if (option == "--help" || option == "-h")
+      return print_usage;
+    if (option == "--print-parameters")
+      return [](std::ostream &out) { RunParameters().print(out); };
+    if (option == "--version")
+      return [](std::ostream &out) { out << version_line() << '\n'; };
+    if (option == "--list-experiments")
+      return [](std::ostream &out) {
+        for (const ExperimentType &type : experiment_types())
+          out << type.name << '\n';
+      };
+    return {};
+  }
+
   void
   run(const RunArguments &arguments, const MPI_Comm communicator)
   {
     RunParameters parameters;
     parameters.read(arguments.filename, arguments.changes);
     parameters.create_experiment(communicator)->run();
+  }
+
+  /**
+   * Run, and turn what stopped it into a message and the exit code: 1 for
+   * an input error, 128 + the signal for an interruption, 2 for a solver
+   * that failed or an internal error (which stops every rank).
+   */
+  int
+  run_to_exit_code(const RunArguments &arguments,
+                   const MPI_Comm      communicator,
+                   const bool          root)
+  {
+    try
+      {
+        run(arguments, communicator);
+      }
+    catch (const InputError &e)
+      {
+        if (root)
+          std::cerr << "rbc-ifem: error: " << e.what() << std::endl;
+        return 1;
+      }
+    catch (const RunInterrupted &e)
+      {
+        if (root)
+          std::cerr << "rbc-ifem: interrupted: " << e.what() << std::endl;
+        return 128 + e.signal;
+      }
+    catch (const SolverFailure &e)
+      {
+        if (root)
+          std::cerr << "rbc-ifem: stopped: " << e.what() << std::endl;
+        return 2;
+      }
+    catch (const std::exception &e)
+      {
+        // It may have happened on this rank alone, with the others waiting
+        // for it in a collective step: say where, and stop them all.
+        std::cerr << "rbc-ifem: internal error on rank "
+                  << Utilities::MPI::this_mpi_process(communicator) << ": "
+                  << e.what() << std::endl;
+        MPI_Abort(communicator, 2);
+        return 2;
+      }
+    return 0;
   }
 } // namespace
 
@@ -89,32 +157,13 @@ main(int argc, char *argv[])
   const bool root = Utilities::MPI::this_mpi_process(communicator) == 0;
 
   const std::vector<std::string> arguments(argv + 1, argv + argc);
-  if (arguments.size() == 1 &&
-      (arguments[0] == "--help" || arguments[0] == "-h"))
-    {
-      if (root)
-        print_usage(std::cout);
-      return 0;
-    }
-  if (arguments.size() == 1 && arguments[0] == "--print-parameters")
-    {
-      if (root)
-        RunParameters().print(std::cout);
-      return 0;
-    }
-  if (arguments.size() == 1 && arguments[0] == "--version")
-    {
-      if (root)
-        std::cout << version_line() << '\n';
-      return 0;
-    }
-  if (arguments.size() == 1 && arguments[0] == "--list-experiments")
-    {
-      if (root)
-        for (const ExperimentType &type : experiment_types())
-          std::cout << type.name << '\n';
-      return 0;
-    }
+  if (arguments.size() == 1)
+    if (const auto print = information(arguments[0]))
+      {
+        if (root)
+          print(std::cout);
+        return 0;
+      }
   const std::optional<RunArguments> run_with = run_arguments(arguments);
   if (!run_with)
     {
@@ -127,38 +176,5 @@ main(int argc, char *argv[])
         }
       return 1;
     }
-
-  try
-    {
-      run(*run_with, communicator);
-    }
-  catch (const InputError &e)
-    {
-      if (root)
-        std::cerr << "rbc-ifem: error: " << e.what() << std::endl;
-      return 1;
-    }
-  catch (const RunInterrupted &e)
-    {
-      if (root)
-        std::cerr << "rbc-ifem: interrupted: " << e.what() << std::endl;
-      return 128 + e.signal;
-    }
-  catch (const SolverFailure &e)
-    {
-      if (root)
-        std::cerr << "rbc-ifem: stopped: " << e.what() << std::endl;
-      return 2;
-    }
-  catch (const std::exception &e)
-    {
-      // It may have happened on this rank alone, with the others waiting
-      // for it in a collective step: say where, and stop them all.
-      std::cerr << "rbc-ifem: internal error on rank "
-                << Utilities::MPI::this_mpi_process(communicator) << ": "
-                << e.what() << std::endl;
-      MPI_Abort(communicator, 2);
-      return 2;
-    }
-  return 0;
+  return run_to_exit_code(*run_with, communicator, root);
 }

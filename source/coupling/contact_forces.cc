@@ -1,36 +1,18 @@
 #include <rbc_ifem/coupling/cell_population.h>
 #include <rbc_ifem/coupling/contact_forces.h>
 #include <rbc_ifem/coupling/point_bins.h>
+#include <rbc_ifem/coupling/point_forces.h>
 #include <rbc_ifem/geometry/capillary_mesh.h>
 #include <rbc_ifem/membrane/membrane_equilibrium.h>
 
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <tuple>
 
 namespace rbc_ifem
 {
   namespace
   {
-    /// The reference area a_i = ∫ N_i dA0 of every point of every cell.
-    std::vector<std::vector<double>>
-    reference_point_areas(
-      const std::vector<std::unique_ptr<Membrane>> &membranes)
-    {
-      std::vector<std::vector<double>> areas;
-      for (const auto &membrane : membranes)
-        areas.push_back(membrane->nodal_areas(membrane->reference_positions()));
-      return areas;
-    }
-
-    Point<3>
-    node_position(const Vector<double>                         &x,
-                  const std::array<types::global_dof_index, 3> &dofs)
-    {
-      return Point<3>(x[dofs[0]], x[dofs[1]], x[dofs[2]]);
-    }
-
     /**
      * K of point forces: 3 × 3 blocks on single points (a wall) and on
      * pairs of points i, j whose energy depends on x_i - x_j (K_ii = K_jj =
@@ -69,15 +51,6 @@ namespace rbc_ifem
       std::vector<std::pair<PointDoFs, Tensor<2, 3>>>             single;
       std::vector<std::tuple<PointDoFs, PointDoFs, Tensor<2, 3>>> pairs;
     };
-
-    void
-    add_node_force(Vector<double>                               &forces,
-                   const std::array<types::global_dof_index, 3> &dofs,
-                   const Tensor<1, 3>                           &force)
-    {
-      for (unsigned int d = 0; d < 3; ++d)
-        forces[dofs[d]] += force[d];
-    }
   } // namespace
 
   RepulsivePotential::RepulsivePotential(const double pressure_scale,
@@ -413,47 +386,6 @@ namespace rbc_ifem
           }
       }
     return stages;
-  }
-
-  PushingForce::PushingForce(
-    const std::vector<std::unique_ptr<Membrane>> &membranes,
-    const std::vector<Tensor<1, 3>>              &cell_forces)
-    : membranes(membranes)
-    , cell_forces(cell_forces)
-    , weights(reference_point_areas(membranes))
-  {
-    AssertDimension(cell_forces.size(), membranes.size());
-    for (std::vector<double> &w : weights)
-      {
-        const double area = std::accumulate(w.begin(), w.end(), 0.);
-        for (double &a : w)
-          a /= area;
-      }
-  }
-
-  CellForceReport
-  PushingForce::add_forces(const std::vector<Vector<double>> &x,
-                           std::vector<Vector<double>>       &forces) const
-  {
-    CellForceReport report;
-    for (unsigned int c = 0; c < membranes.size(); ++c)
-      {
-        const auto &nodes = membranes[c]->nodes();
-        for (unsigned int n = 0; n < nodes.size(); ++n)
-          {
-            const Tensor<1, 3> force = weights[c][n] * cell_forces[c];
-            report.energy -= force * node_position(x[c], nodes[n]);
-            add_node_force(forces[c], nodes[n], force);
-          }
-        report.external_force += cell_forces[c];
-      }
-    return report;
-  }
-
-  std::unique_ptr<CellForceStiffness>
-  PushingForce::stiffness(const std::vector<Vector<double>> &) const
-  {
-    return nullptr; // E is linear in x
   }
 
   void

@@ -122,7 +122,29 @@ namespace rbc_ifem
     std::vector<Point<3>> wrapped(n_membrane_points);
     for (unsigned int i = 0; i < n_membrane_points; ++i)
       wrapped[i] = wrap_into_segment(points[i], period);
+    const std::vector<unsigned int> claims = claim_points(wrapped);
+    for (unsigned int i = 0; i < n_membrane_points; ++i)
+      {
+        if (claims[i] == nobody)
+          throw std::runtime_error(
+            "membrane point " + std::to_string(i) + " at (" +
+            std::to_string(points[i][0]) + ", " + std::to_string(points[i][1]) +
+            ", " + std::to_string(points[i][2]) +
+            ") µm lies outside the fluid domain: a cell has left it "
+            "or touched its wall.");
+        if (claims[i] != rank)
+          owner_cell[i] = triangulation.end();
+      }
 
+    group_points_by_cell();
+    take_shape_values();
+  }
+
+  std::vector<unsigned int>
+  ImmersedCoupling::claim_points(const std::vector<Point<3>> &wrapped)
+  {
+    const MPI_Comm     communicator = triangulation.get_communicator();
+    const unsigned int rank = Utilities::MPI::this_mpi_process(communicator);
     // First the points this rank held, near where they were; then every
     // rank looks for the points nobody kept among its own cells. The
     // lowest rank that found a point keeps it.
@@ -148,20 +170,12 @@ namespace rbc_ifem
             keep(i, locate_anywhere(wrapped[i]));
         Utilities::MPI::min(claims, communicator, claims);
       }
-    for (unsigned int i = 0; i < n_membrane_points; ++i)
-      {
-        if (claims[i] == nobody)
-          throw std::runtime_error(
-            "membrane point " + std::to_string(i) + " at (" +
-            std::to_string(points[i][0]) + ", " + std::to_string(points[i][1]) +
-            ", " + std::to_string(points[i][2]) +
-            ") µm lies outside the fluid domain: a cell has left it "
-            "or touched its wall.");
-        if (claims[i] != rank)
-          owner_cell[i] = triangulation.end();
-      }
+    return claims;
+  }
 
-    // Group this rank's points by cell, and take the shape values there.
+  void
+  ImmersedCoupling::group_points_by_cell()
+  {
     points_by_cell.clear();
     for (unsigned int i = 0; i < n_membrane_points; ++i)
       if (owner_cell[i] != triangulation.end())
@@ -182,7 +196,11 @@ namespace rbc_ifem
           cell_start.push_back(k);
         }
     cell_start.push_back(points_by_cell.size());
+  }
 
+  void
+  ImmersedCoupling::take_shape_values()
+  {
     const FiniteElement<3> &fe = dof_handler.get_fe();
     shape_values.resize(points_by_cell.size() *
                         velocity_shape_functions.size());

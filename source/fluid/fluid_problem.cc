@@ -22,85 +22,6 @@
 
 namespace rbc_ifem
 {
-  PoiseuilleFlow::PoiseuilleFlow(const double              mean_speed,
-                                 const double              frame_velocity,
-                                 const double              viscosity,
-                                 const GeometryParameters &geometry)
-    : Function<3>(4)
-    , mean_speed(mean_speed)
-    , frame_velocity(frame_velocity)
-    , viscosity(viscosity)
-    , radius(geometry.capillary_radius)
-    , length(geometry.capillary_length)
-  {}
-
-  double
-  PoiseuilleFlow::value(const Point<3> &p, const unsigned int component) const
-  {
-    const double r2 = (p[1] * p[1] + p[2] * p[2]) / (radius * radius);
-    switch (component)
-      {
-        case 0:
-          return 2. * mean_speed * (1. - r2) - frame_velocity;
-        case 3:
-          return 8. * viscosity * mean_speed * (length - p[0]) /
-                 (radius * radius);
-        default:
-          return 0.;
-      }
-  }
-
-
-  SimpleShearFlow::SimpleShearFlow(const double shear_rate)
-    : Function<3>(4)
-    , shear_rate(shear_rate)
-  {}
-
-  double
-  SimpleShearFlow::value(const Point<3> &p, const unsigned int component) const
-  {
-    return component == 0 ? shear_rate * p[1] : 0.;
-  }
-
-
-  FlowDrive
-  FlowDrive::capillary(const FluidParameters    &fluid,
-                       const GeometryParameters &geometry)
-  {
-    if (geometry.periodic)
-      return periodic_capillary(fluid, geometry);
-    FlowDrive drive;
-    drive.dirichlet[FluidBoundary::wall] =
-      std::make_shared<Functions::ZeroFunction<3>>(4);
-    drive.dirichlet[FluidBoundary::inlet] = std::make_shared<PoiseuilleFlow>(
-      fluid.inlet_mean_speed, 0., fluid.viscosity, geometry);
-    return drive;
-  }
-
-  FlowDrive
-  FlowDrive::periodic_capillary(const FluidParameters    &fluid,
-                                const GeometryParameters &geometry)
-  {
-    FlowDrive drive;
-    drive.dirichlet[FluidBoundary::wall] =
-      std::make_shared<Functions::ZeroFunction<3>>(4);
-    drive.period        = geometry.capillary_length;
-    const double radius = geometry.capillary_radius;
-    drive.pressure_gradient =
-      8. * fluid.viscosity * fluid.inlet_mean_speed / (radius * radius);
-    return drive;
-  }
-
-  FlowDrive
-  FlowDrive::shear(const double shear_rate)
-  {
-    FlowDrive drive;
-    drive.dirichlet[FluidBoundary::wall] =
-      std::make_shared<SimpleShearFlow>(shear_rate);
-    return drive;
-  }
-
-
   namespace
   {
     /// scale (v(p) - U e_x): a drive's velocity (the first three components
@@ -627,33 +548,26 @@ namespace rbc_ifem
   FlowMeasures
   FluidProblem::measure() const
   {
-    TimerOutput::Scope               scope(timer, "fluid: measures");
+    TimerOutput::Scope scope(timer, "fluid: measures");
+    FlowMeasures       measures;
+    measure_divergence_and_speed(measures);
+    measure_flow_through_ends(measures);
+    return measures;
+  }
+
+  void
+  FluidProblem::measure_divergence_and_speed(FlowMeasures &measures) const
+  {
     const FEValuesExtractors::Vector velocities(0);
     const QGauss<3>                  quadrature(3);
-    const QGauss<2>                  face_quadrature(3);
     FEValues<3>                      fe_values(mapping,
                           velocity_fe,
                           quadrature,
                           update_values | update_gradients | update_JxW_values);
-    FEFaceValues<3>                  face_values(mapping,
-                                velocity_fe,
-                                face_quadrature,
-                                update_values | update_normal_vectors |
-                                  update_JxW_values);
-    FEFaceValues<3>                  pressure_face_values(mapping,
-                                         pressure_fe,
-                                         face_quadrature,
-                                         update_values);
-    std::vector<Tensor<1, 3>>        v(quadrature.size()),
-      v_face(face_quadrature.size());
-    std::vector<double> div_v(quadrature.size()),
-      p_face(face_quadrature.size());
+    std::vector<Tensor<1, 3>>        v(quadrature.size());
+    std::vector<double>              div_v(quadrature.size());
 
-    FlowMeasures m;
-    double       divergence_squared = 0.;
-    // Integrals of p and of 1 over the inlet and the outlet.
-    double inlet_pressure = 0., inlet_area = 0., outlet_pressure = 0.,
-           outlet_area = 0.;
+    double divergence_squared = 0.;
     for (const auto &cell : velocity_dofs.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -664,54 +578,78 @@ namespace rbc_ifem
           for (const unsigned int q : fe_values.quadrature_point_indices())
             {
               divergence_squared += div_v[q] * div_v[q] * fe_values.JxW(q);
-              m.max_velocity = std::max(m.max_velocity, v[q].norm());
+              measures.max_velocity =
+                std::max(measures.max_velocity, v[q].norm());
             }
-          for (const unsigned int f : cell->face_indices())
-            if (cell->face(f)->at_boundary() &&
-                (cell->face(f)->boundary_id() == FluidBoundary::inlet ||
-                 cell->face(f)->boundary_id() == FluidBoundary::outlet))
-              {
-                const bool outlet =
-                  cell->face(f)->boundary_id() == FluidBoundary::outlet;
-                face_values.reinit(cell, f);
-                pressure_face_values.reinit(
-                  DoFHandler<3>::active_cell_iterator(&triangulation,
-                                                      cell->level(),
-                                                      cell->index(),
-                                                      &pressure_dofs),
-                  f);
-                face_values[velocities].get_function_values(current.block(0),
-                                                            v_face);
-                pressure_face_values.get_function_values(current.block(1),
-                                                         p_face);
-                for (const unsigned int q :
-                     face_values.quadrature_point_indices())
-                  {
-                    const double JxW = face_values.JxW(q);
-                    (outlet ? outlet_pressure : inlet_pressure) +=
-                      p_face[q] * JxW;
-                    (outlet ? outlet_area : inlet_area) += JxW;
-                    if (outlet)
-                      m.flow_rate +=
-                        v_face[q] * face_values.normal_vector(q) * JxW;
-                  }
-              }
         }
-    m.divergence_l2 =
+    measures.divergence_l2 =
       std::sqrt(Utilities::MPI::sum(divergence_squared, communicator));
-    m.max_velocity = Utilities::MPI::max(m.max_velocity, communicator);
-    m.flow_rate    = Utilities::MPI::sum(m.flow_rate, communicator);
+    measures.max_velocity =
+      Utilities::MPI::max(measures.max_velocity, communicator);
+  }
+
+  void
+  FluidProblem::measure_flow_through_ends(FlowMeasures &measures) const
+  {
+    const FEValuesExtractors::Vector velocities(0);
+    const QGauss<2>                  face_quadrature(3);
+    FEFaceValues<3>                  face_values(mapping,
+                                velocity_fe,
+                                face_quadrature,
+                                update_values | update_normal_vectors |
+                                  update_JxW_values);
+    FEFaceValues<3>                  pressure_face_values(mapping,
+                                         pressure_fe,
+                                         face_quadrature,
+                                         update_values);
+    std::vector<Tensor<1, 3>>        v_face(face_quadrature.size());
+    std::vector<double>              p_face(face_quadrature.size());
+
+    // Integrals of p and of 1 over the inlet and the outlet.
+    double inlet_pressure = 0., inlet_area = 0., outlet_pressure = 0.,
+           outlet_area = 0.;
+    for (const auto &cell : velocity_dofs.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              (cell->face(f)->boundary_id() == FluidBoundary::inlet ||
+               cell->face(f)->boundary_id() == FluidBoundary::outlet))
+            {
+              const bool outlet =
+                cell->face(f)->boundary_id() == FluidBoundary::outlet;
+              face_values.reinit(cell, f);
+              pressure_face_values.reinit(
+                DoFHandler<3>::active_cell_iterator(
+                  &triangulation, cell->level(), cell->index(), &pressure_dofs),
+                f);
+              face_values[velocities].get_function_values(current.block(0),
+                                                          v_face);
+              pressure_face_values.get_function_values(current.block(1),
+                                                       p_face);
+              for (const unsigned int q :
+                   face_values.quadrature_point_indices())
+                {
+                  const double JxW = face_values.JxW(q);
+                  (outlet ? outlet_pressure : inlet_pressure) +=
+                    p_face[q] * JxW;
+                  (outlet ? outlet_area : inlet_area) += JxW;
+                  if (outlet)
+                    measures.flow_rate +=
+                      v_face[q] * face_values.normal_vector(q) * JxW;
+                }
+            }
+    measures.flow_rate = Utilities::MPI::sum(measures.flow_rate, communicator);
     // The outlet's normal is e_x: the frame's motion adds V times its area.
-    m.lab_flow_rate =
-      m.flow_rate +
+    measures.lab_flow_rate =
+      measures.flow_rate +
       frame_velocity * Utilities::MPI::sum(outlet_area, communicator);
-    m.pressure_drop = Utilities::MPI::sum(inlet_pressure, communicator) /
-                        Utilities::MPI::sum(inlet_area, communicator) -
-                      Utilities::MPI::sum(outlet_pressure, communicator) /
-                        Utilities::MPI::sum(outlet_area, communicator);
+    measures.pressure_drop =
+      Utilities::MPI::sum(inlet_pressure, communicator) /
+        Utilities::MPI::sum(inlet_area, communicator) -
+      Utilities::MPI::sum(outlet_pressure, communicator) /
+        Utilities::MPI::sum(outlet_area, communicator);
     if (drive.period)
-      m.pressure_drop += drive.pressure_gradient * *drive.period;
-    return m;
+      measures.pressure_drop += drive.pressure_gradient * *drive.period;
   }
 
   std::string

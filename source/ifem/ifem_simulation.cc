@@ -4,6 +4,7 @@
 #include <rbc_ifem/base/solver_failure.h>
 #include <rbc_ifem/coupling/contact_forces.h>
 #include <rbc_ifem/coupling/membrane_forces.h>
+#include <rbc_ifem/coupling/pushing_force.h>
 #include <rbc_ifem/coupling/semi_implicit_load.h>
 #include <rbc_ifem/coupling/time_step_limit.h>
 #include <rbc_ifem/diffusion/uptake_solver.h>

@@ -1,56 +1,24 @@
 #include <rbc_ifem/base/output.h>
 #include <rbc_ifem/membrane/membrane.h>
 
+#include "membrane_internals.h"
+
 #include <deal.II/base/mpi.h>
-#include <deal.II/differentiation/ad/sacado_product_types.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/mapping_fe_field.h>
 #include <deal.II/fe/mapping_q.h>
-#include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/numerics/data_out.h>
-
-#include <Sacado.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <variant>
 
-// deal.II 9.4 knows the product types of Sacado's DFad, not of the
-// fixed-length SFad the membrane forces use: declare them, so that Tensor
-// arithmetic on SFad (cross products, contractions) gives SFad.
-DEAL_II_NAMESPACE_OPEN
-namespace internal
-{
-  template <typename T, int N>
-  struct ProductTypeImpl<Sacado::Fad::SFad<T, N>, double>
-  {
-    using type = Sacado::Fad::SFad<T, N>;
-  };
-
-  template <typename T, int N>
-  struct ProductTypeImpl<double, Sacado::Fad::SFad<T, N>>
-  {
-    using type = Sacado::Fad::SFad<T, N>;
-  };
-
-  template <typename T, int N>
-  struct ProductTypeImpl<Sacado::Fad::SFad<T, N>, Sacado::Fad::SFad<T, N>>
-  {
-    using type = Sacado::Fad::SFad<T, N>;
-  };
-} // namespace internal
-
-template <typename T, int N>
-struct EnableIfScalar<Sacado::Fad::SFad<T, N>>
-{
-  using type = Sacado::Fad::SFad<T, N>;
-};
-DEAL_II_NAMESPACE_CLOSE
-
 namespace rbc_ifem
 {
+  using namespace MembraneInternals;
+
   /// What one cell contributes, at positions of type Number.
   template <typename Number>
   struct Membrane::CellTerms
@@ -62,158 +30,6 @@ namespace rbc_ifem
     std::vector<Number>               mass;   ///< m_a = ∫ N_a dA
     std::vector<Tensor<1, 3, Number>> normal; ///< ∫ N_a n dA
   };
-
-  /// The cell terms summed over the membrane.
-  struct Membrane::Sums
-  {
-    double                    in_plane = 0., area = 0., volume = 0.;
-    std::vector<Tensor<1, 3>> laplacian, normal;
-    std::vector<double>       mass;
-  };
-
-  /// dE/d(sum) for every sum of Sums (the in-plane sum's is 1).
-  struct Membrane::Multipliers
-  {
-    double                    area = 0., volume = 0.;
-    std::vector<Tensor<1, 3>> laplacian, normal;
-    std::vector<double>       mass;
-  };
-
-  namespace
-  {
-    /// The number of ranks of @p comm; 1 in a program that never started
-    /// MPI (a serial test).
-    unsigned int
-    n_ranks(const MPI_Comm comm)
-    {
-      return Utilities::MPI::job_supports_mpi() ?
-               Utilities::MPI::n_mpi_processes(comm) :
-               1;
-    }
-
-    /// Replace @p values on every rank of @p comm by their sum over the ranks.
-    void
-    add_up_over_ranks(const ArrayView<double> &values, const MPI_Comm comm)
-    {
-      Utilities::MPI::sum(ArrayView<const double>(values.data(), values.size()),
-                          comm,
-                          values);
-    }
-
-    /// The surface at one quadrature point, from its tangents.
-    template <typename Number>
-    struct SurfacePoint
-    {
-      Tensor<2, 2, Number> g_inverse; ///< the inverse metric g^{αβ}
-      Number               I1;        ///< tr(G⁻¹g) = λ1² + λ2²
-      Number               J;         ///< λ1λ2 = dA/dA0
-      Number               dA;        ///< sqrt(det g) times the weight
-      Tensor<1, 3, Number> normal_dA; ///< t0 × t1 times the weight
-    };
-
-    /**
-     * SurfacePoint of the tangents @p tangent at a quadrature point of
-     * weight @p w, whose reference surface has the inverse metric
-     * @p G_inverse and the area element @p reference_jacobian.
-     */
-    template <typename Number>
-    SurfacePoint<Number>
-    surface_point(const Tensor<1, 3, Number> (&tangent)[2],
-                  const Tensor<2, 2> &G_inverse,
-                  const double        reference_jacobian,
-                  const double        w)
-    {
-      using std::sqrt;
-      Tensor<2, 2, Number> g;
-      for (unsigned int alpha = 0; alpha < 2; ++alpha)
-        for (unsigned int beta = 0; beta < 2; ++beta)
-          g[alpha][beta] = tangent[alpha] * tangent[beta];
-      SurfacePoint<Number> point;
-      point.g_inverse       = invert(g);
-      const Number jacobian = sqrt(determinant(g));
-      point.I1              = 0.;
-      for (unsigned int alpha = 0; alpha < 2; ++alpha)
-        for (unsigned int beta = 0; beta < 2; ++beta)
-          point.I1 += G_inverse[alpha][beta] * g[alpha][beta];
-      point.J         = jacobian / reference_jacobian;
-      point.dA        = jacobian * w;
-      point.normal_dA = cross_product_3d(tangent[0], tangent[1]) * w;
-      return point;
-    }
-
-    /**
-     * The bending energy of one node from its sums, κ/2 m |y/m - c0 ν|²
-     * with ν = w/|w| (Membrane): for any number type, so that its Hessian
-     * in (y, m, w) can be taken with Sacado.
-     */
-    template <typename Number>
-    Number
-    nodal_bending_energy(const Tensor<1, 3, Number> &y,
-                         const Number               &m,
-                         const Tensor<1, 3, Number> &w,
-                         const double                kappa,
-                         const double                c0)
-    {
-      using std::sqrt;
-      const Number               norm_w = sqrt(w * w);
-      const Tensor<1, 3, Number> u      = y / m - c0 * w / norm_w;
-      return kappa / 2. * m * (u * u);
-    }
-
-    /// The Hessian of nodal_bending_energy() in (y, m, w), 7 × 7.
-    FullMatrix<double>
-    nodal_bending_hessian(const Tensor<1, 3> &y,
-                          const double        m,
-                          const Tensor<1, 3> &w,
-                          const double        kappa,
-                          const double        c0)
-    {
-      using First  = Sacado::Fad::SFad<double, 7>;
-      using Second = Sacado::Fad::SFad<First, 7>;
-      const std::array<double, 7> values{
-        {y[0], y[1], y[2], m, w[0], w[1], w[2]}};
-      std::array<Second, 7> s;
-      for (unsigned int j = 0; j < 7; ++j)
-        s[j] = Second(7, j, First(7, j, values[j]));
-      const Tensor<1, 3, Second> Y({s[0], s[1], s[2]}), W({s[4], s[5], s[6]});
-      const Second       e = nodal_bending_energy(Y, s[3], W, kappa, c0);
-      FullMatrix<double> hessian(7, 7);
-      for (unsigned int j = 0; j < 7; ++j)
-        for (unsigned int l = 0; l < 7; ++l)
-          hessian(j, l) = e.dx(j).dx(l);
-      return hessian;
-    }
-  } // namespace
-
-  /**
-   * The derivatives of E by the sums, gathered at one quadrature point:
-   * the integrand of cell_potential() there is point_potential().
-   */
-  struct Membrane::PointWeights
-  {
-    double       area = 0., volume = 0.; ///< d_A, d_V
-    double       mass = 0.;              ///< Σ_a d_m N_a
-    Tensor<1, 3> normal;                 ///< Σ_a d_w N_a
-    Tensor<1, 3> laplacian[2];           ///< Σ_a d_y ∂_α N_a
-  };
-
-  void
-  MembraneStiffness::vmult_add(Vector<double>       &dst,
-                               const Vector<double> &src) const
-  {
-    if (n_ranks(communicator) == 1)
-      local.vmult_add(dst, src);
-    else
-      {
-        // Each rank holds its share of the sparse part: sum the products.
-        Vector<double> product(dst.size());
-        local.vmult(product, src);
-        add_up_over_ranks(make_array_view(product), communicator);
-        dst += product;
-      }
-    for (const auto &[c, gradient] : rank_one)
-      dst.add(c * (gradient * src), gradient);
-  }
 
   Membrane::Membrane(const Triangulation<2, 3> &reference_mesh,
                      const MembraneParameters  &parameters)
@@ -227,7 +43,16 @@ namespace rbc_ifem
     , quadrature(parameters.degree + 2)
   {
     dof_handler.distribute_dofs(fe);
+    tabulate_shape_functions();
+    number_nodes();
+    make_stiffness_sparsity();
+    interpolate_reference_surface();
+    measure_reference_surface();
+  }
 
+  void
+  Membrane::tabulate_shape_functions()
+  {
     const unsigned int n_q = quadrature.size(),
                        n_a = scalar_fe.n_dofs_per_cell();
     shape_values.reinit(n_a, n_q);
@@ -247,9 +72,14 @@ namespace rbc_ifem
           point_maps[q](3 + e, k) = shape_gradients(a, q)[0];
           point_maps[q](6 + e, k) = shape_gradients(a, q)[1];
         }
+  }
 
+  void
+  Membrane::number_nodes()
+  {
     // Nodes: numbered by the DoF of their x component.
-    std::vector<int> node_of_dof(dof_handler.n_dofs(), -1);
+    const unsigned int n_a = scalar_fe.n_dofs_per_cell();
+    std::vector<int>   node_of_dof(dof_handler.n_dofs(), -1);
     component_of_dof.resize(dof_handler.n_dofs());
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
@@ -274,22 +104,11 @@ namespace rbc_ifem
         cell_dofs.push_back(dofs);
         cell_nodes.push_back(nodes);
       }
+  }
 
-    // The stiffness couples the DoFs of all cells around a node: the
-    // bending energy of a node depends on them through its sums.
-    cells_around_node.resize(n_nodes);
-    for (unsigned int c = 0; c < cell_nodes.size(); ++c)
-      for (unsigned int a = 0; a < n_a; ++a)
-        cells_around_node[cell_nodes[c][a]].emplace_back(c, a);
-    DynamicSparsityPattern coupled(dof_handler.n_dofs());
-    for (unsigned int i = 0; i < n_nodes; ++i)
-      {
-        const std::vector<types::global_dof_index> patch = patch_dofs(i);
-        for (const types::global_dof_index row : patch)
-          coupled.add_entries(row, patch.begin(), patch.end(), true);
-      }
-    stiffness_sparsity.copy_from(coupled);
-
+  void
+  Membrane::interpolate_reference_surface()
+  {
     // X: the support points of the field, on the curved reference surface.
     const MappingQ<2, 3> mapping(std::max(2u, parameters.degree));
     std::map<types::global_dof_index, Point<3>> support_points;
@@ -297,7 +116,12 @@ namespace rbc_ifem
     reference.reinit(dof_handler.n_dofs());
     for (const auto &[dof, point] : support_points)
       reference[dof] = point[component(dof)];
+  }
 
+  void
+  Membrane::measure_reference_surface()
+  {
+    const unsigned int n_q = quadrature.size();
     for (unsigned int c = 0; c < cell_dofs.size(); ++c)
       {
         const std::vector<double> X = local_positions(c, reference);
@@ -620,72 +444,6 @@ namespace rbc_ifem
     return phi;
   }
 
-  template <typename Number, typename Law>
-  Number
-  Membrane::point_potential(const Law                   &law,
-                            const unsigned int           c,
-                            const unsigned int           q,
-                            const std::array<Number, 9> &z,
-                            const PointWeights          &weights) const
-  {
-    Tensor<1, 3, Number> position, tangent[2];
-    for (unsigned int d = 0; d < 3; ++d)
-      {
-        position[d]   = z[d];
-        tangent[0][d] = z[3 + d];
-        tangent[1][d] = z[6 + d];
-      }
-    const double               w     = quadrature.weight(q);
-    const SurfacePoint<Number> point = surface_point(
-      tangent, reference_metric_inverse[c][q], reference_jacobian[c][q], w);
-    Number phi =
-      law.energy_density(point.I1, point.J) * reference_jacobian[c][q] * w +
-      (weights.area + weights.mass) * point.dA +
-      weights.volume / 3. * (position * point.normal_dA) +
-      weights.normal * point.normal_dA;
-    for (unsigned int alpha = 0; alpha < 2; ++alpha)
-      for (unsigned int beta = 0; beta < 2; ++beta)
-        phi += point.g_inverse[alpha][beta] * point.dA *
-               (weights.laplacian[alpha] * tangent[beta]);
-    return phi;
-  }
-
-  template <typename Number>
-  auto
-  Membrane::point_integrands(const unsigned int           c,
-                             const unsigned int           q,
-                             const std::array<Number, 9> &z) const
-    -> std::array<Number, n_point_integrands>
-  {
-    Tensor<1, 3, Number> position, tangent[2];
-    for (unsigned int e = 0; e < 3; ++e)
-      {
-        position[e]   = z[e];
-        tangent[0][e] = z[3 + e];
-        tangent[1][e] = z[6 + e];
-      }
-    const SurfacePoint<Number> point =
-      surface_point(tangent,
-                    reference_metric_inverse[c][q],
-                    reference_jacobian[c][q],
-                    quadrature.weight(q));
-    std::array<Number, n_point_integrands> t;
-    t[0] = point.dA;
-    t[1] = position * point.normal_dA / 3.;
-    for (unsigned int e = 0; e < 3; ++e)
-      t[2 + e] = point.normal_dA[e];
-    // g^{αβ} t_β dA: ∂_α N_a times it is the integrand of y_a.
-    for (unsigned int alpha = 0; alpha < 2; ++alpha)
-      for (unsigned int e = 0; e < 3; ++e)
-        {
-          t[5 + 3 * alpha + e] = 0.;
-          for (unsigned int beta = 0; beta < 2; ++beta)
-            t[5 + 3 * alpha + e] +=
-              point.g_inverse[alpha][beta] * point.dA * tangent[beta][e];
-        }
-    return t;
-  }
-
   Membrane::PointWeights
   Membrane::point_weights(const unsigned int c,
                           const unsigned int q,
@@ -704,170 +462,6 @@ namespace rbc_ifem
             shape_gradients(a, q)[alpha] * d.laplacian[i];
       }
     return weights;
-  }
-
-  std::vector<types::global_dof_index>
-  Membrane::patch_dofs(const unsigned int i) const
-  {
-    std::vector<types::global_dof_index> patch;
-    for (const auto &[c, a] : cells_around_node[i])
-      patch.insert(patch.end(), cell_dofs[c].begin(), cell_dofs[c].end());
-    std::sort(patch.begin(), patch.end());
-    patch.erase(std::unique(patch.begin(), patch.end()), patch.end());
-    return patch;
-  }
-
-  void
-  Membrane::stiffness(const Vector<double> &x, MembraneStiffness &K) const
-  {
-    const Sums        sums = sum_shared_cell_terms(x);
-    MembraneEnergy    energy;
-    const Multipliers d = energy_derivatives(sums, energy);
-    K.local.reinit(stiffness_sparsity);
-    K.rank_one.clear();
-    K.communicator = communicator;
-
-    // Every integrand depends on the DoFs only through the point's position
-    // and tangents z = L_q x (9 numbers), so derivatives in the cell's DoFs
-    // are taken in z, by forward mode per point, and chained with L_q: far
-    // cheaper than forward mode over the cell.
-    //
-    // First, per cell, the first derivatives of its terms: of A and V for
-    // the penalties' rank-one parts (this rank's cells, summed over the
-    // ranks) and of each node's sums (y, m, w: 7 rows per local node) for
-    // the bending chain below (the cells around this rank's nodes).
-    const unsigned int n_a            = scalar_fe.n_dofs_per_cell(),
-                       n              = fe.n_dofs_per_cell();
-    const auto [first_cell, end_cell] = share(cell_dofs.size());
-    const auto [first_node, end_node] = share(n_nodes);
-    std::vector<bool> needed(cell_dofs.size(), false);
-    std::fill(needed.begin() + first_cell, needed.begin() + end_cell, true);
-    for (unsigned int i = first_node; i < end_node; ++i)
-      for (const auto &[c, a] : cells_around_node[i])
-        needed[c] = true;
-    Vector<double> area_gradient(dof_handler.n_dofs()),
-      volume_gradient(dof_handler.n_dofs());
-    std::vector<FullMatrix<double>> sum_derivatives(cell_dofs.size());
-    {
-      using First = Sacado::Fad::SFad<double, 9>;
-      FullMatrix<double> D(n_point_integrands, 9), DL(n_point_integrands, n);
-      Vector<double>     values(n), z(9);
-      for (unsigned int c = 0; c < cell_dofs.size(); ++c)
-        {
-          if (!needed[c])
-            continue;
-          const bool own = c >= first_cell && c < end_cell;
-          x.extract_subvector_to(cell_dofs[c].begin(),
-                                 cell_dofs[c].end(),
-                                 values.begin());
-          FullMatrix<double> &J = sum_derivatives[c];
-          J.reinit(7 * n_a, n);
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-            {
-              point_maps[q].vmult(z, values);
-              std::array<First, 9> z1;
-              for (unsigned int j = 0; j < 9; ++j)
-                z1[j] = First(9, j, z[j]);
-              const auto t = point_integrands(c, q, z1);
-              for (unsigned int r = 0; r < n_point_integrands; ++r)
-                for (unsigned int j = 0; j < 9; ++j)
-                  D(r, j) = t[r].dx(j);
-              D.mmult(DL, point_maps[q]);
-              for (unsigned int k = 0; k < n; ++k)
-                {
-                  if (own)
-                    {
-                      area_gradient[cell_dofs[c][k]] += DL(0, k);
-                      volume_gradient[cell_dofs[c][k]] += DL(1, k);
-                    }
-                  for (unsigned int a = 0; a < n_a; ++a)
-                    {
-                      const double N = shape_values(a, q);
-                      J(7 * a + 3, k) += N * DL(0, k);
-                      for (unsigned int e = 0; e < 3; ++e)
-                        {
-                          J(7 * a + 4 + e, k) += N * DL(2 + e, k);
-                          for (unsigned int alpha = 0; alpha < 2; ++alpha)
-                            J(7 * a + e, k) += shape_gradients(a, q)[alpha] *
-                                               DL(5 + 3 * alpha + e, k);
-                        }
-                    }
-                }
-            }
-        }
-    }
-
-    // The Hessian of each of this rank's cells' potentials φ_c
-    // (cell_potential()), H_c = Σ_q L_qᵀ H_q L_q, with the 9 × 9 H_q by
-    // nested forward mode.
-    const auto add_cell_hessians = [&](const auto &law) {
-      using First  = Sacado::Fad::SFad<double, 9>;
-      using Second = Sacado::Fad::SFad<First, 9>;
-      FullMatrix<double> cell_matrix(n, n), H(9, 9), HL(9, n);
-      Vector<double>     values(n), z(9);
-      for (unsigned int c = first_cell; c < end_cell; ++c)
-        {
-          x.extract_subvector_to(cell_dofs[c].begin(),
-                                 cell_dofs[c].end(),
-                                 values.begin());
-          cell_matrix = 0.;
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-            {
-              const FullMatrix<double> &L = point_maps[q];
-              L.vmult(z, values);
-              std::array<Second, 9> z2;
-              for (unsigned int j = 0; j < 9; ++j)
-                z2[j] = Second(9, j, First(9, j, z[j]));
-              const Second phi =
-                point_potential(law, c, q, z2, point_weights(c, q, d));
-              for (unsigned int j = 0; j < 9; ++j)
-                for (unsigned int l = 0; l < 9; ++l)
-                  H(j, l) = phi.dx(j).dx(l);
-              H.mmult(HL, L);
-              L.Tmmult(cell_matrix, HL, /*adding=*/true);
-            }
-          K.local.add(cell_dofs[c], cell_matrix);
-        }
-    };
-    std::visit(add_cell_hessians, elastic_law);
-    if (n_ranks(communicator) > 1)
-      {
-        add_up_over_ranks(make_array_view(area_gradient), communicator);
-        add_up_over_ranks(make_array_view(volume_gradient), communicator);
-      }
-
-    // The bending energy's curvature in each of this rank's nodes' sums
-    // s_i = (y, m, w): J_iᵀ B_i J_i, with J_i = ∂s_i/∂x over the cells
-    // around the node.
-    for (unsigned int i = first_node; i < end_node; ++i)
-      {
-        const std::vector<types::global_dof_index> patch = patch_dofs(i);
-        FullMatrix<double> J(7, patch.size()), BJ(7, patch.size()),
-          patch_matrix(patch.size(), patch.size());
-        for (const auto &[c, a] : cells_around_node[i])
-          for (unsigned int k = 0; k < n; ++k)
-            {
-              const unsigned int column =
-                std::lower_bound(patch.begin(), patch.end(), cell_dofs[c][k]) -
-                patch.begin();
-              for (unsigned int r = 0; r < 7; ++r)
-                J(r, column) += sum_derivatives[c](7 * a + r, k);
-            }
-        nodal_bending_hessian(sums.laplacian[i],
-                              sums.mass[i],
-                              sums.normal[i],
-                              parameters.bending_modulus,
-                              parameters.spontaneous_curvature)
-          .mmult(BJ, J);
-        J.Tmmult(patch_matrix, BJ);
-        K.local.add(patch, patch_matrix);
-      }
-
-    if (parameters.area_penalty > 0.)
-      K.rank_one.emplace_back(parameters.area_penalty / area0, area_gradient);
-    if (parameters.volume_penalty > 0.)
-      K.rank_one.emplace_back(parameters.volume_penalty / volume0,
-                              volume_gradient);
   }
 
   std::vector<double>

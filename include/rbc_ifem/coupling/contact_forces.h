@@ -202,31 +202,6 @@ namespace rbc_ifem
   };
 
   /**
-   * A constant force on each cell (the pushing forces of Immersed cells),
-   * spread over its points by their reference areas: E = -Σ_c F_c · Σ_i
-   * (a_i / A_c) x_i. External.
-   */
-  class PushingForce : public CellForce
-  {
-  public:
-    PushingForce(const std::vector<std::unique_ptr<Membrane>> &membranes,
-                 const std::vector<Tensor<1, 3>>              &cell_forces);
-
-    CellForceReport
-    add_forces(const std::vector<Vector<double>> &positions,
-               std::vector<Vector<double>>       &forces) const override;
-
-    std::unique_ptr<CellForceStiffness>
-    stiffness(const std::vector<Vector<double>> &positions) const override;
-
-  private:
-    const std::vector<std::unique_ptr<Membrane>> &membranes;
-    const std::vector<Tensor<1, 3>>               cell_forces;
-    /// a_i / A_c of every point.
-    std::vector<std::vector<double>> weights;
-  };
-
-  /**
    * Add the forces of subsection Cell interactions to @p cells: the
    * repulsion between cells and the aggregation (if on), across the ends
    * of a segment with a @p period, and the repulsion from a capillary wall

@@ -135,6 +135,24 @@ namespace rbc_ifem
     locate_anywhere(const Point<3> &p) const;
 
     /**
+     * Find the cells of the points @p wrapped (in the segment) on this
+     * rank, into owner_cell and reference_points; returns per point the
+     * lowest rank that found it, the same on every rank (or the largest
+     * unsigned int if none did).
+     */
+    std::vector<unsigned int>
+    claim_points(const std::vector<Point<3>> &wrapped);
+
+    /// Sort this rank's points by their cells: points_by_cell,
+    /// point_cells and cell_start.
+    void
+    group_points_by_cell();
+
+    /// The velocity shape functions' values at this rank's points.
+    void
+    take_shape_values();
+
+    /**
      * Call @p f(dofs, first, last) for every cell of this rank that holds
      * points, with the cell's DoF indices and the range of its points in
      * points_by_cell.

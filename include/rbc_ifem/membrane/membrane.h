@@ -205,6 +205,28 @@ namespace rbc_ifem
     struct Sums;
     struct Multipliers;
 
+    /// @name The constructor's steps, in this order
+    /// @{
+    /// N_a and ∂N_a/∂ξ at the quadrature points, and the point maps L_q.
+    void
+    tabulate_shape_functions();
+    /// The nodes, numbered by the DoF of their x component, and every
+    /// cell's DoFs and nodes.
+    void
+    number_nodes();
+    /// cells_around_node, and the stiffness's sparsity: the DoFs of the
+    /// cells around each node coupled.
+    void
+    make_stiffness_sparsity();
+    /// X: the support points of the field, on the curved reference surface.
+    void
+    interpolate_reference_surface();
+    /// The reference metric and area element at every quadrature point,
+    /// every cell's reference area, A0 and V0.
+    void
+    measure_reference_surface();
+    /// @}
+
     /**
      * E from the sums, into @p energy, and the derivatives of E by every
      * sum: what turns the derivatives of the cell terms into E's.
@@ -265,6 +287,56 @@ namespace rbc_ifem
     /// The DoFs of the cells around node @p i, sorted.
     std::vector<types::global_dof_index>
     patch_dofs(const unsigned int i) const;
+
+    /// @name The steps of stiffness()
+    /// @{
+    struct SumGradients;
+
+    /**
+     * The cells whose first derivatives this rank's share of the stiffness
+     * needs: its own cells (for ∂A/∂x and ∂V/∂x) and those around its
+     * nodes (for their bending energy).
+     */
+    std::vector<bool>
+    cells_for_sum_gradients() const;
+
+    /// The first derivatives of the sums at @p x that the stiffness chains
+    /// through, by forward mode at each quadrature point.
+    SumGradients
+    sum_gradients(const Vector<double> &x) const;
+
+    /**
+     * Add quadrature point @p q's share of the derivatives of a cell's
+     * nodal sums (y, m, w) to @p J, from @p DL, the derivatives of
+     * point_integrands() there by the cell's DoFs.
+     */
+    void
+    add_nodal_sum_derivatives(const unsigned int        q,
+                              const FullMatrix<double> &DL,
+                              FullMatrix<double>       &J) const;
+
+    /**
+     * Add to @p K the Hessian of each of this rank's cells' potentials φ_c
+     * (cell_potential()) with the sums' derivatives @p d held fixed,
+     * H_c = Σ_q L_qᵀ H_q L_q, the 9 × 9 H_q by nested forward mode.
+     */
+    void
+    add_cell_hessians(const Vector<double> &x,
+                      const Multipliers    &d,
+                      SparseMatrix<double> &K) const;
+
+    /**
+     * Add to @p K the bending energy's curvature in each of this rank's
+     * nodes' sums s_i = (y, m, w): J_iᵀ B_i J_i, with J_i = ∂s_i/∂x over the
+     * cells around the node (from @p nodal_sum_gradients, as
+     * SumGradients holds them).
+     */
+    void
+    add_bending_curvature(
+      const Sums                            &sums,
+      const std::vector<FullMatrix<double>> &nodal_sum_gradients,
+      SparseMatrix<double>                  &K) const;
+    /// @}
 
     /// The integrals of one cell at the local positions @p x, with @p law.
     template <typename Number, typename Law>

@@ -739,7 +739,7 @@ namespace rbc_ifem
   CutCellDiffusion::hold_unsupported_dofs()
   {
     // A field can reach into a mesh cell as a sliver of round-off measure
-    // (seen at a folded rim, tests/regression/prm/folded_rim.prm), and if
+    // (seen at a folded rim, tests/regression/folded_rim/run.prm), and if
     // no ghost penalty face reaches its DoFs either, their rows are
     // round-off of either sign, which the diagonal scaling in solve() would
     // divide by: hold them at zero, as the unused fields' DoFs are.

@@ -1,3 +1,5 @@
+// mpirun: 1 2 3
+
 // The immersed coupling (ImmersedCoupling) on the fluid's Q2-Q1 space, for
 // the nodes of an Evans-Fung membrane in the capillary, on any number of
 // ranks:

@@ -1,3 +1,5 @@
+// mpirun: 1 2
+
 // The cut-cell uptake solve on a fully distributed mesh, on however many
 // ranks it runs (ctest: 1 and 2):
 //

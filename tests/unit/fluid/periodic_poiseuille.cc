@@ -1,3 +1,5 @@
+// mpirun: 1 2
+
 // The periodic capillary (FlowDrive::periodic_capillary): with the ends
 // joined and the pressure gradient G = 8μū/R² as a body force, one
 // backward Euler step of 1 s from rest is Hagen-Poiseuille flow of mean

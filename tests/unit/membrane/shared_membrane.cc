@@ -1,3 +1,5 @@
+// mpirun: 2 3
+
 // A membrane whose work is shared out over the ranks (Membrane::share_work())
 // gives every rank the energy, the forces and the products with the tangent
 // stiffness of the same membrane working alone, to round-off: for both

@@ -169,7 +169,6 @@ main(int argc, char *argv[])
                     pcout,
                     TimerOutput::never,
                     TimerOutput::wall_times);
-
   // The parameters, as in step-1.
   Parameters       parameters;
   ParameterHandler prm;

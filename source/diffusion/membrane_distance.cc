@@ -3,6 +3,7 @@
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/numerics/rtree.h>
 
 #include <boost/container_hash/hash.hpp>
 
@@ -43,6 +44,18 @@ namespace rbc_ifem
     /// The largest mapping degree the fixed-size evaluation supports.
     constexpr unsigned int max_degree = 4;
   } // namespace
+
+  struct MembraneDistance::Tree
+  {
+    explicit Tree(const std::vector<Point<3>> &samples)
+      : rtree(pack_rtree_of_indices(samples))
+    {}
+
+    decltype(pack_rtree_of_indices(
+      std::declval<const std::vector<Point<3>> &>())) rtree;
+  };
+
+  MembraneDistance::~MembraneDistance() = default;
 
   MembraneDistance::MembraneDistance(
     const std::vector<const Triangulation<2, 3> *> &membranes,
@@ -114,7 +127,7 @@ namespace rbc_ifem
             sample_patch.push_back(k);
             sample_xi.push_back(xi);
           }
-    tree = std::make_unique<Tree>(pack_rtree_of_indices(samples));
+    tree = std::make_unique<Tree>(samples);
   }
 
   void
@@ -227,8 +240,8 @@ namespace rbc_ifem
   {
     constexpr double         tie = 1e-8; // [µm], far below any mesh size
     std::vector<std::size_t> nearest;
-    tree->query(boost::geometry::index::nearest(around, n_candidates),
-                std::back_inserter(nearest));
+    tree->rtree.query(boost::geometry::index::nearest(around, n_candidates),
+                      std::back_inserter(nearest));
     for (const std::size_t k : nearest)
       {
         if (std::find(tried.begin(), tried.end(), sample_patch[k]) !=

@@ -6,7 +6,6 @@
 #include <deal.II/base/tensor.h>
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/grid/tria.h>
-#include <deal.II/numerics/rtree.h>
 
 #include <memory>
 #include <optional>
@@ -58,6 +57,8 @@ namespace rbc_ifem
     MembraneDistance(const std::vector<const Triangulation<2, 3> *> &membranes,
                      const MappingQ<2, 3>                           &mapping,
                      const std::optional<double> &period = std::nullopt);
+
+    ~MembraneDistance();
 
     MembraneDistance(const MembraneDistance &) = delete;
     MembraneDistance &
@@ -127,8 +128,10 @@ namespace rbc_ifem
     std::vector<Point<3>>     samples;
     std::vector<unsigned int> sample_patch;
     std::vector<Point<2>>     sample_xi;
-    /// Indices into samples (which it refers to: the class cannot move).
-    using Tree = decltype(pack_rtree_of_indices(samples));
+    /// An R-tree of indices into samples (which it refers to: the class
+    /// cannot move); declared in the .cc, so that the headers that include
+    /// this one do not parse Boost.Geometry.
+    struct Tree;
     std::unique_ptr<Tree> tree;
     std::optional<double> period;
 

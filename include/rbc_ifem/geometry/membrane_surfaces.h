@@ -5,6 +5,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace rbc_ifem
@@ -55,6 +56,45 @@ namespace rbc_ifem
     const MappingQ<2, 3>                    *surface_mapping;
     std::shared_ptr<const void>              owner;
   };
+
+  // The functions, inline: they are small.
+  inline MembraneSurfaces::MembraneSurfaces(
+    std::vector<const Triangulation<2, 3> *> surfaces,
+    const MappingQ<2, 3>                    &mapping,
+    std::shared_ptr<const void>              owner)
+    : surfaces(std::move(surfaces))
+    , surface_mapping(&mapping)
+    , owner(std::move(owner))
+  {}
+
+  inline unsigned int
+  MembraneSurfaces::size() const
+  {
+    return surfaces.size();
+  }
+
+  inline const std::vector<const Triangulation<2, 3> *> &
+  MembraneSurfaces::meshes() const
+  {
+    return surfaces;
+  }
+
+  inline const MappingQ<2, 3> &
+  MembraneSurfaces::mapping() const
+  {
+    return *surface_mapping;
+  }
+
+  inline std::vector<Point<3>>
+  MembraneSurfaces::vertices() const
+  {
+    std::vector<Point<3>> points;
+    for (const Triangulation<2, 3> *surface : surfaces)
+      points.insert(points.end(),
+                    surface->get_vertices().begin(),
+                    surface->get_vertices().end());
+    return points;
+  }
 } // namespace rbc_ifem
 
 #endif

@@ -39,6 +39,45 @@ namespace rbc_ifem
     const unsigned int diffusion_interval, output_interval, progress_interval,
       checkpoint_interval;
   };
+
+  // The functions, inline: they are a few comparisons each.
+  namespace internal
+  {
+    /// Whether @p step is due every @p interval steps (0: never).
+    inline bool
+    due(const unsigned int step, const unsigned int interval)
+    {
+      return interval > 0 && step % interval == 0;
+    }
+  } // namespace internal
+
+  inline bool
+  StepActions::any() const
+  {
+    return diffusion || output || progress || checkpoint;
+  }
+
+  inline StepSchedule::StepSchedule(const TimeParameters     &time,
+                                    const ImmersedParameters &immersed)
+    : n_steps(time.n_steps)
+    , diffusion_interval(immersed.diffusion_interval)
+    , output_interval(time.output_interval)
+    , progress_interval(immersed.progress_interval)
+    , checkpoint_interval(immersed.checkpoint_interval)
+  {}
+
+  inline StepActions
+  StepSchedule::actions(const unsigned int step) const
+  {
+    const bool  last = step == n_steps;
+    StepActions actions;
+    actions.diffusion  = internal::due(step, diffusion_interval);
+    actions.output     = internal::due(step, output_interval) || last;
+    actions.progress   = internal::due(step, progress_interval);
+    actions.checkpoint = internal::due(step, checkpoint_interval) ||
+                         (last && checkpoint_interval > 0);
+    return actions;
+  }
 } // namespace rbc_ifem
 
 #endif

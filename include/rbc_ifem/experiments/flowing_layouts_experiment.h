@@ -56,7 +56,7 @@ namespace rbc_ifem
    * as Cell interactions/Aggregation says).
    *
    * Each run is a flowing run of its own in Output
-   * directory/<kind>_<n>_<seed>/, its parameters derived from these
+   * `directory/<kind>_<n>_<seed>/`, its parameters derived from these
    * (RunParameters::derive(): Experiment = flow and the run's layout), so its
    * parameters.prm reruns it alone; it writes the files of a flowing run there
    * (dm.csv, cells.csv with the gaps, flow.csv, the VTU series). The study

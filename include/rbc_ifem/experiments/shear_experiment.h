@@ -58,7 +58,7 @@ namespace rbc_ifem
    * subsection Shear, the membrane moduli are scaled to give G, the time
    * step is a fraction of the explicit-coupling limit (which scales with
    * Ca), and an IFEMSimulation runs to the total strain γ̇ t in
-   * Output directory/ca_<Ca>/. Each run's parameters are derived from this
+   * `Output directory/ca_<Ca>/`. Each run's parameters are derived from this
    * one's in a ParameterHandler (RunParameters::derive()), so its
    * parameters.prm is exactly what it runs; it writes shear.csv (time,
    * Taylor deformation D = (L - B)/(L + B), inclination θ/π) besides the

@@ -2,8 +2,8 @@
  * rbc-ifem: red blood cells in a pulmonary capillary, simulated with the
  * immersed finite element method, and their carbon monoxide uptake.
  *
- *   rbc-ifem FILE.prm [--set "Subsection/Name=value"]...
- *                                   run the experiment FILE describes
+ *   rbc-ifem FILE.prm [--set "Subsection/Name=value"]... [--overwrite]
+ *            [--force]              run the experiment FILE describes
  *   rbc-ifem --print-parameters     every parameter with its documentation
  *   rbc-ifem --list-experiments     the experiments, one per line
  *   rbc-ifem --version              the version and the git commit
@@ -12,6 +12,7 @@
 
 #include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/interruption.h>
+#include <rbc_ifem/base/output_error.h>
 #include <rbc_ifem/base/solver_failure.h>
 #include <rbc_ifem/base/version.h>
 #include <rbc_ifem/experiments/registry.h>
@@ -38,6 +39,12 @@ namespace
          "changed (several --set\n"
          "                                    allowed, checked like the "
          "file, kept in parameters.prm)\n"
+         "       rbc-ifem FILE.prm --overwrite  start over in an Output "
+         "directory that holds\n"
+         "                                    an earlier run's checkpoints "
+         "(removed first)\n"
+         "       rbc-ifem FILE.prm --force    run although the size estimate "
+         "exceeds the memory\n"
          "       mpirun -np N rbc-ifem FILE.prm  the same on N MPI ranks\n"
          "       rbc-ifem --print-parameters  print every parameter, "
          "documented, with its allowed\n"
@@ -50,26 +57,33 @@ namespace
          "Ready experiments are in prm/; the documentation is in doc/.\n";
   }
 
-  /// The file and the --set changes of a run's command line.
+  /// The file, the --set changes and the options of a run's command line.
   struct RunArguments
   {
     std::string              filename;
     std::vector<std::string> changes;
+    RunOptions               options;
   };
 
-  /// FILE.prm [--set "Subsection/Name=value"]...; nothing if not of that form.
+  /**
+   * FILE.prm [--set "Subsection/Name=value"]... [--overwrite] [--force], in
+   * any order after the file; nothing if not of that form.
+   */
   std::optional<RunArguments>
   run_arguments(const std::vector<std::string> &arguments)
   {
     if (arguments.empty() || arguments[0].rfind("-", 0) == 0)
       return {};
-    RunArguments run{arguments[0], {}};
-    for (std::size_t i = 1; i < arguments.size(); i += 2)
-      {
-        if (arguments[i] != "--set" || i + 1 == arguments.size())
-          return {};
-        run.changes.push_back(arguments[i + 1]);
-      }
+    RunArguments run{arguments[0], {}, {}};
+    for (std::size_t i = 1; i < arguments.size(); ++i)
+      if (arguments[i] == "--overwrite")
+        run.options.overwrite = true;
+      else if (arguments[i] == "--force")
+        run.options.force = true;
+      else if (arguments[i] == "--set" && i + 1 < arguments.size())
+        run.changes.push_back(arguments[++i]);
+      else
+        return {};
     return run;
   }
 
@@ -100,13 +114,17 @@ namespace
   {
     RunParameters parameters;
     parameters.read(arguments.filename, arguments.changes);
-    parameters.create_experiment(communicator)->run();
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      for (const std::string &warning : parameters.read_warnings())
+        std::cerr << "rbc-ifem: warning: " << warning << std::endl;
+    parameters.create_experiment(communicator, arguments.options)->run();
   }
 
   /**
    * Run, and turn what stopped it into a message and the exit code: 1 for
    * an input error, 128 + the signal for an interruption, 2 for a solver
-   * that failed or an internal error (which stops every rank).
+   * that failed or an internal error (which stops every rank), 3 for a file
+   * that could not be written (doc/outputs.md lists them).
    */
   int
   run_to_exit_code(const RunArguments &arguments,
@@ -135,6 +153,20 @@ namespace
           std::cerr << "rbc-ifem: stopped: " << e.what() << std::endl;
         return 2;
       }
+    catch (const OutputError &e)
+      {
+        const bool alone = Utilities::MPI::n_mpi_processes(communicator) == 1;
+        if (!e.known_to_every_rank() || root)
+          std::cerr << "rbc-ifem: stopped: " << e.what()
+                    << ". The files written before it, and the last "
+                       "checkpoint if there is one, are as they were."
+                    << std::endl;
+        // A failure the other ranks do not know of leaves them waiting in a
+        // collective step: only MPI_Abort stops them.
+        if (!e.known_to_every_rank() && !alone)
+          MPI_Abort(communicator, 3);
+        return 3;
+      }
     catch (const std::exception &e)
       {
         // It may have happened on this rank alone, with the others waiting
@@ -153,8 +185,9 @@ int
 main(int argc, char *argv[])
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const MPI_Comm                   communicator = MPI_COMM_WORLD;
-  const bool root = Utilities::MPI::this_mpi_process(communicator) == 0;
+  stop_on_interruption();
+  const MPI_Comm communicator = MPI_COMM_WORLD;
+  const bool     root = Utilities::MPI::this_mpi_process(communicator) == 0;
 
   const std::vector<std::string> arguments(argv + 1, argv + argc);
   if (arguments.size() == 1)

@@ -18,6 +18,7 @@ results_table shear_mesh_study ranks "box [µm]" "fluid h at the capsule [µm]" 
   "steady D" "steady θ/π" "wall time [s]"
 for run in "1 3 24" "1 4 24" "2 3 24" "2 4 24" "1 3 36"; do
   read -r band surface box <<<"$run"
+  rm -rf out # the runs of a study end with checkpoints, which a new run would not replace
   { cat "$here/prm/shear_capsule.prm"
     cat <<PRM
 set Output directory = out

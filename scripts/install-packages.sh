@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
 # Install the Debian 12 packages rbc-ifem needs: deal.II 9.4 (with MPI,
 # Trilinos, PETSc, METIS, ...), a compiler, CMake, MPI launchers, numdiff for
-# the tests, clang-format for the code style and python3 for the pages'
-# generated tables (doc/scripts/tables.py). With --docs also what renders
+# the tests, strace for the fault test's injected kills, clang-format for the
+# code style and python3 for the pages' generated tables
+# (doc/scripts/tables.py). With --docs also what renders
 # the documentation's figures (python3-vtk9, python3-matplotlib and a virtual
 # X server and the DejaVu fonts) and doxygen for the headers' reference
 # (scripts/doxygen.sh). Uses sudo when not run as root.
 set -euo pipefail
 
-packages=(libdeal.ii-dev g++ cmake make openmpi-bin numdiff clang-format python3)
+packages=(libdeal.ii-dev g++ cmake make openmpi-bin numdiff strace clang-format python3)
 if [ "${1:-}" = "--docs" ]; then
   packages+=(python3-vtk9 python3-matplotlib xvfb xauth fonts-dejavu-core doxygen)
 fi

@@ -1,5 +1,7 @@
 #include <rbc_ifem/base/interruption.h>
 
+#include <unistd.h>
+
 namespace rbc_ifem
 {
   namespace
@@ -12,7 +14,28 @@ namespace rbc_ifem
     {
       caught_signal = signal;
     }
+
+    /// Say why, and end the process as the signal would have (write() and
+    /// _exit() are what a handler may call).
+    extern "C" void
+    stop_at_once(const int signal)
+    {
+      const char message[] =
+        "rbc-ifem: interrupted outside a time loop (while setting up or "
+        "writing its last files): the files it wrote are complete; a "
+        "flowing run resumes from its last checkpoint, if it wrote one.\n";
+      [[maybe_unused]] const auto written =
+        ::write(STDERR_FILENO, message, sizeof(message) - 1);
+      ::_exit(128 + signal);
+    }
   } // namespace
+
+  void
+  stop_on_interruption()
+  {
+    std::signal(SIGINT, stop_at_once);
+    std::signal(SIGTERM, stop_at_once);
+  }
 
   InterruptionGuard::InterruptionGuard()
   {

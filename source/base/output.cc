@@ -1,11 +1,18 @@
 #include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/output_error.h>
 
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/numerics/data_out.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -69,8 +76,7 @@ namespace rbc_ifem
             const std::string                     &path,
             const FieldData                       &field_data)
   {
-    const std::string text = vtu_text(data_out, field_data);
-    write_file_atomically(path, [&](std::ostream &out) { out << text; });
+    write_text_atomically(path, vtu_text(data_out, field_data));
   }
 
   template <int dim, int spacedim>
@@ -153,6 +159,47 @@ namespace rbc_ifem
 
   namespace
   {
+    /// Why no file can be created in @p directory or, if it does not
+    /// exist, in its nearest existing parent; "" if one can.
+    std::string
+    why_not_writable(const std::string &directory)
+    {
+      namespace fs = std::filesystem;
+      std::error_code error;
+      fs::path folder = fs::absolute(directory, error).lexically_normal();
+      while (!fs::exists(folder, error) && folder.has_parent_path() &&
+             folder != folder.parent_path())
+        folder = folder.parent_path();
+      if (!fs::is_directory(folder, error))
+        return folder.string() + " is not a folder";
+      const std::string probe =
+        (folder / (".rbc-ifem-write-check-" + std::to_string(::getpid())))
+          .string();
+      const int file = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
+      if (file < 0)
+        return std::string(std::strerror(errno)) + " (in " + folder.string() +
+               ")";
+      ::close(file);
+      ::unlink(probe.c_str());
+      return "";
+    }
+  } // namespace
+
+  void
+  check_writable(const std::string &directory, const MPI_Comm communicator)
+  {
+    std::string problem;
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      problem = why_not_writable(directory);
+    problem = Utilities::MPI::broadcast(communicator, problem, 0);
+    if (!problem.empty())
+      throw InputError("Output directory",
+                       directory,
+                       "no file can be written there: " + problem + ".");
+  }
+
+  namespace
+  {
     /// Every file write_file_atomically() has written in this process.
     std::set<std::filesystem::path> &
     files_written_so_far()
@@ -214,20 +261,74 @@ namespace rbc_ifem
                             [&](std::ostream &out) { out << text; });
   }
 
+  namespace
+  {
+    /// Write @p bytes as @p path, fsync'ed if @p sync; OutputError with
+    /// errno's text, and no file left at @p path, if that fails.
+    void
+    write_bytes(const std::string &path,
+                const std::string &bytes,
+                const bool         sync)
+    {
+      const int file = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      if (file < 0)
+        throw OutputError(path, std::strerror(errno));
+      std::size_t written = 0;
+      int         error   = 0;
+      while (written < bytes.size() && error == 0)
+        {
+          const ssize_t n =
+            ::write(file, bytes.data() + written, bytes.size() - written);
+          if (n < 0 && errno != EINTR)
+            error = errno;
+          else if (n > 0)
+            written += n;
+        }
+      if (error == 0 && sync && ::fsync(file) != 0)
+        error = errno;
+      if (::close(file) != 0 && error == 0)
+        error = errno;
+      if (error != 0)
+        {
+          ::unlink(path.c_str());
+          throw OutputError(path, std::strerror(error));
+        }
+    }
+  } // namespace
+
+  void
+  write_synced_file(const std::string &path, const std::string &bytes)
+  {
+    write_bytes(path, bytes, true);
+  }
+
+  void
+  rename_written_file(const std::string &from, const std::string &to)
+  {
+    if (std::rename(from.c_str(), to.c_str()) != 0)
+      {
+        const int error = errno;
+        ::unlink(from.c_str());
+        throw OutputError(to, std::strerror(error));
+      }
+    files_written_so_far().insert(normal_path(to));
+  }
+
+  void
+  write_text_atomically(const std::string &path, const std::string &text)
+  {
+    const std::string temporary = path + ".part";
+    write_bytes(temporary, text, false);
+    rename_written_file(temporary, path);
+  }
+
   void
   write_file_atomically(const std::string                         &path,
                         const std::function<void(std::ostream &)> &writer)
   {
-    const std::string temporary = path + ".part";
-    {
-      std::ofstream out(temporary);
-      writer(out);
-      out.flush();
-      if (!out)
-        throw std::runtime_error("could not write the file '" + path + "'");
-    }
-    std::filesystem::rename(temporary, path);
-    files_written_so_far().insert(normal_path(path));
+    std::ostringstream text;
+    writer(text);
+    write_text_atomically(path, text.str());
   }
 
   namespace

@@ -1,3 +1,4 @@
+#include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/parameter_text.h>
 #include <rbc_ifem/base/version.h>
 
@@ -5,6 +6,9 @@
 #include <boost/property_tree/xml_parser.hpp>
 
 #include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <map>
 #include <regex>
 #include <sstream>
@@ -160,8 +164,8 @@ namespace rbc_ifem
     return patterns;
   }
 
-  std::map<std::string, std::string>
-  parameter_values(const std::string &text)
+  std::vector<ParameterEntry>
+  parameter_entries(const std::string &text)
   {
     // A value ends at a comment (deal.II adds "# default: ..." to a value
     // that is not the default).
@@ -169,25 +173,102 @@ namespace rbc_ifem
     static const std::regex subsection_line(R"(\s*subsection (.*?)\s*)");
     static const std::regex end_line(R"(\s*end\s*)");
     std::istringstream      lines(text);
-    std::string             line, path;
-    std::vector<std::string>           subsections;
-    std::map<std::string, std::string> values;
-    while (std::getline(lines, line))
+    std::string             line;
+    std::vector<std::string>    subsections;
+    std::vector<ParameterEntry> entries;
+    for (unsigned int number = 1; std::getline(lines, line); ++number)
       {
         std::smatch m;
         if (std::regex_match(line, m, set_line))
           {
-            path.clear();
+            std::string path;
             for (const std::string &subsection : subsections)
               path += subsection + '/';
-            values[path + m[1].str()] = m[2];
+            entries.push_back({path + m[1].str(), m[2], number});
           }
         else if (std::regex_match(line, m, subsection_line))
           subsections.push_back(m[1]);
         else if (std::regex_match(line, end_line) && !subsections.empty())
           subsections.pop_back();
       }
+    return entries;
+  }
+
+  std::map<std::string, std::string>
+  parameter_values(const std::string &text)
+  {
+    std::map<std::string, std::string> values;
+    for (const ParameterEntry &entry : parameter_entries(text))
+      values[entry.path] = entry.value;
     return values;
+  }
+
+  std::string
+  read_parameter_file(const std::string        &filename,
+                      std::vector<std::string> &warnings)
+  {
+    std::ifstream      in(filename, std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    std::string text = bytes.str();
+    // Editors on some systems start a UTF-8 file with a byte-order mark,
+    // which deal.II would read as part of the first line.
+    const std::string byte_order_mark = "\xEF\xBB\xBF";
+    if (text.compare(0, byte_order_mark.size(), byte_order_mark) == 0)
+      text.erase(0, byte_order_mark.size());
+
+    const std::vector<ParameterEntry>   entries = parameter_entries(text);
+    std::map<std::string, unsigned int> first;
+    for (const ParameterEntry &entry : entries)
+      if (!first.emplace(entry.path, entry.line).second)
+        warnings.push_back(filename + ", line " + std::to_string(entry.line) +
+                           ": " + entry.path + " is set again (first on line " +
+                           std::to_string(first[entry.path]) +
+                           "); this later value, " + entry.value +
+                           ", is the one used.");
+    if (entries.empty())
+      warnings.push_back(filename +
+                         " sets no parameter: every one keeps its default "
+                         "(rbc-ifem --print-parameters lists them).");
+    return text;
+  }
+
+  void
+  check_magnitudes(const ParameterHandler &prm)
+  {
+    const auto patterns = parameter_patterns(prm);
+    for (const auto &[path, value] : parameter_values(parameter_text(prm)))
+      {
+        // Names, switches and whole numbers (counts, seeds) are not
+        // physical values; every other number is, "auto" aside.
+        const auto pattern = patterns.find(path);
+        if (pattern == patterns.end() ||
+            std::regex_search(pattern->second,
+                              std::regex("Integer|Bool|Selection|FileName|"
+                                         "DirectoryName")))
+          continue;
+        // Lists separate their numbers by ',' and their items by ';'.
+        std::string numbers = value;
+        std::replace(numbers.begin(), numbers.end(), ';', ',');
+        for (const std::string &word : Utilities::split_string_list(numbers))
+          {
+            char        *end    = nullptr;
+            const double number = std::strtod(word.c_str(), &end);
+            if (end == word.c_str() || number == 0.)
+              continue;
+            if (!std::isfinite(number) || std::abs(number) < 1e-15 ||
+                std::abs(number) > 1e15)
+              throw InputError(path,
+                               value,
+                               "a number of magnitude between 1e-15 and 1e15, "
+                               "or 0: in the units of its documentation "
+                               "(µm, s, pN) no physical value lies outside, "
+                               "and " +
+                                 word +
+                                 " would overflow or vanish in the "
+                                 "solvers.");
+          }
+      }
   }
 
   std::string

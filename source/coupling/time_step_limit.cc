@@ -18,4 +18,25 @@ namespace rbc_ifem
     bending = 8. * viscosity / (m.bending_modulus * q * q * q);
     limit   = std::min(in_plane, bending);
   }
+
+  void
+  CouplingTimeStepLimit::include_contact(const double viscosity,
+                                         const double stiffness,
+                                         const double diameter)
+  {
+    if (stiffness <= 0.)
+      return;
+    contact =
+      std::min(contact,
+               8. * dealii::numbers::PI * viscosity / (diameter * stiffness));
+    limit = std::min(limit, contact);
+  }
+
+  void
+  CouplingTimeStepLimit::include_advection(const double speed,
+                                           const double distance)
+  {
+    if (speed > 0.)
+      advective = distance / speed;
+  }
 } // namespace rbc_ifem

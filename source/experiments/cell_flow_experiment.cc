@@ -25,7 +25,7 @@ namespace rbc_ifem
                                        FlowDomain::capillary(parameters),
                                        communicator,
                                        timer);
-    simulation->setup();
+    simulation->setup(options);
   }
 
   void

@@ -88,6 +88,26 @@ namespace rbc_ifem
       write_tables(const std::string &) const override
       {}
 
+      std::string
+      state() const override
+      {
+        std::vector<double> values{mean_deformation};
+        for (const FlowingLayoutResult::Solve &solve : solves)
+          values.insert(values.end(),
+                        {solve.time, solve.dm_total, solve.smallest_gap});
+        return packed(values);
+      }
+
+      void
+      restore(const std::string &state) override
+      {
+        const std::vector<double> values = unpacked(state);
+        mean_deformation                 = values.at(0);
+        solves.clear();
+        for (std::size_t i = 1; i + 2 < values.size(); i += 3)
+          solves.push_back({values[i], values[i + 1], values[i + 2]});
+      }
+
       std::vector<FlowingLayoutResult::Solve> solves;
       double                                  mean_deformation = 0.;
     };
@@ -171,17 +191,20 @@ namespace rbc_ifem
   std::unique_ptr<RunParameters>
   FlowingLayoutsExperiment::derive_run(const LayoutParameters &layout) const
   {
+    const std::string directory =
+      parameters.output_directory + "/" + run_name(layout);
+    std::vector<ParameterChange> changes{
+      {"", "Experiment", "flow"},
+      {"", "Output directory", directory},
+      {"Layout", "Kind", name_of(layout.kind, layout_kind_names())},
+      {"Layout", "Number of cells", std::to_string(layout.n_cells)},
+      {"Layout", "Seed", std::to_string(layout.seed)},
+      {"Immersed cells", "Enabled", "true"}};
+    for (const ParameterChange &change :
+         resumable_run(parameters, directory, parameters.time.n_steps))
+      changes.push_back(change);
     auto run = std::make_unique<RunParameters>();
-    run->derive(parameter_file_text,
-                {{"", "Experiment", "flow"},
-                 {"",
-                  "Output directory",
-                  parameters.output_directory + "/" + run_name(layout)},
-                 {"Layout", "Kind", name_of(layout.kind, layout_kind_names())},
-                 {"Layout", "Number of cells", std::to_string(layout.n_cells)},
-                 {"Layout", "Seed", std::to_string(layout.seed)},
-                 {"Immersed cells", "Enabled", "true"},
-                 {"Immersed cells", "Resume", "false"}});
+    run->derive(parameter_file_text, changes);
     return run;
   }
 
@@ -192,7 +215,7 @@ namespace rbc_ifem
     Timer             clock;
     UptakeHistory     uptake;
     run_derived_flow(
-      *runs[r], FlowDomain::capillary(p), uptake, communicator, pcout);
+      *runs[r], FlowDomain::capillary(p), uptake, communicator, pcout, options);
 
     FlowingLayoutResult result;
     result.solves       = uptake.solves;

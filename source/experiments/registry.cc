@@ -156,7 +156,8 @@ namespace rbc_ifem
                        "': it does not exist or is not a readable file.");
     try
       {
-        prm.parse_input(filename);
+        std::istringstream text(read_parameter_file(filename, warnings));
+        prm.parse_input(text, filename);
       }
     catch (const ExceptionBase &e)
       {
@@ -246,18 +247,26 @@ namespace rbc_ifem
   void
   RunParameters::validate() const
   {
+    check_magnitudes(prm);
     parameters.validate();
     if (const ExperimentParameters *own_parameters = own[chosen()].get())
       own_parameters->validate(parameters);
   }
 
   std::unique_ptr<Experiment>
-  RunParameters::create_experiment(const MPI_Comm communicator) const
+  RunParameters::create_experiment(const MPI_Comm    communicator,
+                                   const RunOptions &options) const
   {
     const unsigned int t = chosen();
     return experiment_types()[t].create(
-      {experiment_types()[t].name, parameters, prm, communicator},
+      {experiment_types()[t].name, parameters, prm, communicator, options},
       own[t].get());
+  }
+
+  const std::vector<std::string> &
+  RunParameters::read_warnings() const
+  {
+    return warnings;
   }
 
   const Parameters &

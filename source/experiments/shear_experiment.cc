@@ -141,6 +141,24 @@ namespace rbc_ifem
         table.write(directory + "/shear.csv");
       }
 
+      std::string
+      state() const override
+      {
+        std::vector<double> values;
+        for (const std::array<double, 3> &sample : history)
+          values.insert(values.end(), sample.begin(), sample.end());
+        return packed(values);
+      }
+
+      void
+      restore(const std::string &state) override
+      {
+        const std::vector<double> values = unpacked(state);
+        history.clear();
+        for (std::size_t i = 0; i + 2 < values.size(); i += 3)
+          history.push_back({{values[i], values[i + 1], values[i + 2]}});
+      }
+
       /// Time [s], Taylor deformation, inclination [rad] of every record.
       std::vector<std::array<double, 3>> history;
     };
@@ -209,32 +227,34 @@ namespace rbc_ifem
     const long   output_interval = std::max(
       1l, std::lround(shear.output_strain / (shear.shear_rate * time_step)));
 
+    const std::string directory =
+      parameters.output_directory + "/ca_" + csv_row(capillary_number);
+    std::vector<ParameterChange> changes{
+      {"", "Output directory", directory},
+      {"Membrane", "Shear modulus", exact_text(membrane.shear_modulus)},
+      {"Membrane",
+       "Area dilation modulus",
+       exact_text(membrane.area_dilation_modulus)},
+      {"Membrane", "Bending modulus", exact_text(membrane.bending_modulus)},
+      {"Membrane", "Area penalty", exact_text(membrane.area_penalty)},
+      {"Membrane", "Volume penalty", exact_text(membrane.volume_penalty)},
+      {"Time", "Time step", exact_text(time_step)},
+      {"Time", "Number of steps", std::to_string(n_steps)},
+      {"Time", "Output interval", std::to_string(output_interval)},
+      {"Immersed cells", "Enabled", "true"},
+      {"Immersed cells", "Follow cells", "false"},
+      {"Immersed cells", "Diffusion interval", "0"},
+
+      {"Immersed cells", "Progress interval", std::to_string(output_interval)},
+      {"Fluid", "Frame velocity", "0"},
+      // The run's parameters.prm reruns this one run (in its own ca_<Ca>/):
+      // its moduli give this capillary number with a scale factor of 1.
+      {"Shear", "Capillary numbers", exact_text(capillary_number)}};
+    for (const ParameterChange &change :
+         resumable_run(parameters, directory, n_steps))
+      changes.push_back(change);
     auto run = std::make_unique<RunParameters>();
-    run->derive(
-      parameter_file_text,
-      {{"",
-        "Output directory",
-        parameters.output_directory + "/ca_" + csv_row(capillary_number)},
-       {"Membrane", "Shear modulus", exact_text(membrane.shear_modulus)},
-       {"Membrane",
-        "Area dilation modulus",
-        exact_text(membrane.area_dilation_modulus)},
-       {"Membrane", "Bending modulus", exact_text(membrane.bending_modulus)},
-       {"Membrane", "Area penalty", exact_text(membrane.area_penalty)},
-       {"Membrane", "Volume penalty", exact_text(membrane.volume_penalty)},
-       {"Time", "Time step", exact_text(time_step)},
-       {"Time", "Number of steps", std::to_string(n_steps)},
-       {"Time", "Output interval", std::to_string(output_interval)},
-       {"Immersed cells", "Enabled", "true"},
-       {"Immersed cells", "Follow cells", "false"},
-       {"Immersed cells", "Diffusion interval", "0"},
-       {"Immersed cells", "Checkpoint interval", "0"},
-       {"Immersed cells", "Resume", "false"},
-       {"Immersed cells", "Progress interval", std::to_string(output_interval)},
-       {"Fluid", "Frame velocity", "0"},
-       // The run's parameters.prm reruns this one run (in its own ca_<Ca>/):
-       // its moduli give this capillary number with a scale factor of 1.
-       {"Shear", "Capillary numbers", exact_text(capillary_number)}});
+    run->derive(parameter_file_text, changes);
     return run;
   }
 
@@ -290,7 +310,8 @@ namespace rbc_ifem
                      FlowDomain::shear_box(shear.box, shear.shear_rate, p),
                      deformation,
                      communicator,
-                     pcout);
+                     pcout,
+                     options);
 
     ShearSummary summary     = steady_state(deformation.history);
     summary.capillary_number = capillary_number;

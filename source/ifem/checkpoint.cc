@@ -1,5 +1,6 @@
 #include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/output_error.h>
 #include <rbc_ifem/base/parameter_text.h>
 #include <rbc_ifem/diffusion/uptake.h>
 #include <rbc_ifem/ifem/checkpoint.h>
@@ -12,6 +13,12 @@
 #include <boost/serialization/utility.hpp>
 #include <boost/serialization/vector.hpp>
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -78,12 +85,48 @@ namespace rbc_ifem
 
   Checkpoint::Checkpoint(const std::string &directory)
     : directory(directory)
+    , source("checkpoint.bin")
   {}
+
+  std::vector<std::string>
+  Checkpoint::find_in(const std::string &directory)
+  {
+    namespace fs = std::filesystem;
+    std::vector<std::string> found;
+    const auto               add_from = [&found](const fs::path &folder) {
+      for (const char *name : {"checkpoint.bin", "checkpoint_previous.bin"})
+        if (fs::exists(folder / name))
+          found.push_back((folder / name).string());
+    };
+    std::error_code error;
+    if (!fs::is_directory(directory, error))
+      return found;
+    add_from(directory);
+    for (const fs::directory_entry &entry :
+         fs::directory_iterator(directory, error))
+      if (entry.is_directory(error))
+        add_from(entry.path());
+    std::sort(found.begin(), found.end());
+    return found;
+  }
 
   std::string
   Checkpoint::path() const
   {
     return directory + "/checkpoint.bin";
+  }
+
+  bool
+  Checkpoint::exists() const
+  {
+    return std::filesystem::exists(path()) ||
+           std::filesystem::exists(previous_path());
+  }
+
+  std::string
+  Checkpoint::previous_path() const
+  {
+    return directory + "/checkpoint_previous.bin";
   }
 
   void
@@ -92,23 +135,62 @@ namespace rbc_ifem
   {
     if (Utilities::MPI::this_mpi_process(communicator) != 0)
       return;
-    const std::string payload = serialized(state);
-    // The last two: the one before stays as checkpoint_previous.bin.
-    if (std::filesystem::exists(path()))
-      std::filesystem::rename(path(), directory + "/checkpoint_previous.bin");
-    write_file_atomically(path(), [&](std::ostream &out) {
-      out << title << "\nformat " << format << "\nlayout "
-          << layout_fingerprint() << "\nbytes " << payload.size() << "\ncrc32 "
-          << crc32(payload) << '\n'
-          << payload;
-    });
+    const std::string  payload = serialized(state);
+    std::ostringstream file;
+    file << title << "\nformat " << format << "\nlayout "
+         << layout_fingerprint() << "\nbytes " << payload.size() << "\ncrc32 "
+         << crc32(payload) << '\n'
+         << payload;
+    // The new one is complete on the disk before any name changes, and each
+    // rename replaces a name in one step: a run killed at any moment leaves
+    // checkpoint.bin, the last complete checkpoint or the new one.
+    const std::string fresh = path() + ".part";
+    write_synced_file(fresh, file.str());
+    if (rotate && std::filesystem::exists(path()))
+      keep_as_previous();
+    rename_written_file(fresh, path());
+    sync_directory();
+  }
+
+  void
+  Checkpoint::keep_as_previous() const
+  {
+    // A second name for checkpoint.bin, then the rename that replaces the
+    // older checkpoint_previous.bin with it; a copy where links are not
+    // allowed.
+    const std::string kept = previous_path() + ".part";
+    ::unlink(kept.c_str());
+    if (::link(path().c_str(), kept.c_str()) != 0)
+      {
+        std::ifstream      in(path(), std::ios::binary);
+        std::ostringstream bytes;
+        bytes << in.rdbuf();
+        write_synced_file(kept, bytes.str());
+      }
+    rename_written_file(kept, previous_path());
+  }
+
+  void
+  Checkpoint::sync_directory() const
+  {
+    // The renames are on the disk only once the directory is.
+    const int handle = ::open(directory.c_str(), O_RDONLY | O_DIRECTORY);
+    if (handle < 0)
+      return;
+    const int synced = ::fsync(handle);
+    const int error  = errno;
+    ::close(handle);
+    if (synced != 0 && error != EINVAL)
+      throw OutputError(directory, std::strerror(error));
   }
 
   std::string
-  Checkpoint::payload() const
+  Checkpoint::payload(const std::string &file) const
   {
-    std::ifstream in(path(), std::ios::binary);
-    std::string   first_line;
+    std::ifstream in(file, std::ios::binary);
+    if (!in)
+      throw std::runtime_error("it does not exist or cannot be read");
+    std::string first_line;
     std::getline(in, first_line);
     if (first_line != title)
       throw std::runtime_error("it is not an rbc-ifem checkpoint");
@@ -131,7 +213,7 @@ namespace rbc_ifem
     // The size the header claims is checked against the file's before
     // anything is allocated for it.
     const auto start     = in.tellg();
-    const auto available = std::filesystem::file_size(path()) - start;
+    const auto available = std::filesystem::file_size(file) - start;
     if (bytes > available)
       throw std::runtime_error("it is truncated: " + std::to_string(available) +
                                " of its " + std::to_string(bytes) +
@@ -144,35 +226,54 @@ namespace rbc_ifem
     return contents;
   }
 
-  CheckpointState
-  Checkpoint::read(const ResumingRun &run) const
+  std::optional<CheckpointState>
+  Checkpoint::load(const std::string &file, std::string &why_not) const
   {
-    if (!std::ifstream(path(), std::ios::binary))
-      throw InputError(
-        "Immersed cells/Resume",
-        "true",
-        "it needs the checkpoint " + path() +
-          " of an earlier run, which does not exist or cannot be read.");
-    CheckpointState state;
     try
       {
-        std::istringstream              bytes(payload());
+        CheckpointState                 state;
+        std::istringstream              bytes(payload(file));
         boost::archive::binary_iarchive archive(bytes);
         archive >> state;
+        return state;
       }
     catch (const std::exception &e)
       {
-        throw InputError("Immersed cells/Resume",
-                         "true",
-                         "the checkpoint " + path() +
-                           " cannot be used: " + e.what() +
-                           ". The one before it, if the run wrote two, is "
-                           "checkpoint_previous.bin: rename it to "
-                           "checkpoint.bin to resume from there.");
+        why_not = e.what();
+        return {};
       }
-    check_parameters(state.parameters, run);
-    check_sizes(state, run);
-    return state;
+  }
+
+  CheckpointState
+  Checkpoint::read(const ResumingRun &run)
+  {
+    std::string                    why_not;
+    std::optional<CheckpointState> state = load(path(), why_not);
+    if (!state)
+      {
+        std::string why_not_previous;
+        state = load(previous_path(), why_not_previous);
+        if (!state)
+          throw InputError(
+            "Immersed cells/Resume",
+            "true",
+            "it needs a checkpoint of an earlier run in " + directory +
+              ", and none can be used: checkpoint.bin: " + why_not +
+              "; checkpoint_previous.bin: " + why_not_previous + ".");
+        // checkpoint.bin is no state to keep: the next checkpoint replaces
+        // it, and checkpoint_previous.bin stays until then.
+        rotate = false;
+        source = "checkpoint_previous.bin (checkpoint.bin: " + why_not + ")";
+      }
+    check_parameters(state->parameters, run);
+    check_sizes(*state, run);
+    return *state;
+  }
+
+  const std::string &
+  Checkpoint::resumed_from() const
+  {
+    return source;
   }
 
   void
@@ -215,10 +316,10 @@ namespace rbc_ifem
                          std::to_string(run.n_ranks) + " rank(s) and " +
                          std::to_string(run.n_fluid_dofs) +
                          ": resume on the same number of ranks.");
-    if (state.record.step >= run.n_steps)
+    if (state.record.step > run.n_steps)
       throw InputError("Time/Number of steps",
                        std::to_string(run.n_steps),
-                       "a resumed run must go beyond the checkpoint's step " +
-                         std::to_string(state.record.step) + ".");
+                       "a resumed run must go to the checkpoint's step " +
+                         std::to_string(state.record.step) + " or beyond.");
   }
 } // namespace rbc_ifem

@@ -30,6 +30,14 @@ namespace rbc_ifem
                            Triangulation<3> &triangulation) {
       create_fluid_mesh(triangulation, geometry, refinements);
     };
+    Triangulation<3> coarse;
+    create_fluid_mesh(coarse, parameters.geometry, 0);
+    domain.n_coarse_cells       = coarse.n_active_cells();
+    domain.n_global_refinements = parameters.mesh.fluid_global_refinements;
+    domain.volume =
+      numbers::PI *
+      Utilities::fixed_power<2>(parameters.geometry.capillary_radius) *
+      parameters.geometry.capillary_length;
     domain.wall_radius     = parameters.geometry.capillary_radius;
     domain.velocity_scale  = std::abs(parameters.fluid.inlet_mean_speed);
     domain.velocity_symbol = "ū";
@@ -54,10 +62,15 @@ namespace rbc_ifem
                            Triangulation<3> &triangulation) {
       create_shear_box_mesh(triangulation, box, cell_size, refinements);
     };
-    domain.velocity_scale  = shear_rate * parameters.cells.diameter / 2.;
-    domain.velocity_symbol = "γ̇ a";
-    domain.length_scale    = parameters.cells.diameter / 2.;
-    domain.length_symbol   = "a";
+    Triangulation<3> coarse;
+    create_shear_box_mesh(coarse, box, parameters.cells.diameter, 0);
+    domain.n_coarse_cells       = coarse.n_active_cells();
+    domain.n_global_refinements = parameters.mesh.fluid_global_refinements;
+    domain.volume               = box[0] * box[1] * box[2];
+    domain.velocity_scale       = shear_rate * parameters.cells.diameter / 2.;
+    domain.velocity_symbol      = "γ̇ a";
+    domain.length_scale         = parameters.cells.diameter / 2.;
+    domain.length_symbol        = "a";
     return domain;
   }
 } // namespace rbc_ifem

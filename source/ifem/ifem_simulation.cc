@@ -1,6 +1,7 @@
 #include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/interruption.h>
 #include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/output_error.h>
 #include <rbc_ifem/base/solver_failure.h>
 #include <rbc_ifem/coupling/contact_forces.h>
 #include <rbc_ifem/coupling/membrane_forces.h>
@@ -11,6 +12,7 @@
 #include <rbc_ifem/geometry/capillary_mesh.h>
 #include <rbc_ifem/geometry/mesh_hierarchy.h>
 #include <rbc_ifem/ifem/ifem_simulation.h>
+#include <rbc_ifem/ifem/size_estimate.h>
 
 #include <cmath>
 #include <iomanip>
@@ -45,6 +47,7 @@ namespace rbc_ifem
     , run_report(this->parameters, this->domain, communicator)
     , checkpoint(parameters.output_directory)
     , schedule(parameters.time, parameters.immersed)
+    , volume_watch(cells.size(), parameters.immersed.max_volume_change)
   {
     add_cell_forces();
     contacts = cells.size() > 1 || domain.wall_radius.has_value();
@@ -90,8 +93,13 @@ namespace rbc_ifem
   }
 
   void
-  IFEMSimulation::setup()
+  IFEMSimulation::setup(const RunOptions &options)
   {
+    const SizeEstimate size(parameters,
+                            domain,
+                            Utilities::MPI::n_mpi_processes(communicator));
+    pcout << "  " << size.text() << std::endl;
+    size.check(communicator, options.force);
     if (parameters.immersed.squeeze_into_lumen)
       {
         TimerOutput::Scope  scope(timer, "squeeze into lumen");
@@ -146,12 +154,9 @@ namespace rbc_ifem
       }
     mesh_size = coupling->mesh_size_at_points();
     fluid.initialize_velocity_vector(load);
-    const CouplingTimeStepLimit stable(parameters.fluid.viscosity,
-                                       parameters.membrane,
-                                       cells.point_spacing(),
-                                       mesh_size);
-    time_step = parameters.time.coupled_time_step(stable.limit,
-                                                  parameters.immersed.coupling);
+    const CouplingTimeStepLimit stable = time_step_limit();
+    time_step =
+      parameters.time.coupled_time_step(stable, parameters.immersed.coupling);
     fluid.set_time_step(time_step);
     if (parameters.immersed.coupling == CouplingScheme::semi_implicit)
       setup_semi_implicit_load();
@@ -165,9 +170,66 @@ namespace rbc_ifem
     if (parameters.immersed.resume)
       {
         read_checkpoint();
-        pcout << "  resumed from the checkpoint at step " << record.step
-              << ", t = " << record.time << " s" << std::endl;
+        pcout << "  resumed from " << checkpoint.resumed_from() << " at step "
+              << record.step << ", t = " << record.time << " s" << std::endl;
       }
+  }
+
+  CouplingTimeStepLimit
+  IFEMSimulation::time_step_limit() const
+  {
+    CouplingTimeStepLimit stable(parameters.fluid.viscosity,
+                                 parameters.membrane,
+                                 cells.point_spacing(),
+                                 mesh_size);
+    // Points at the run's speed move at most half of what a step allows.
+    stable.include_advection(domain.velocity_scale,
+                             0.5 * parameters.immersed.max_step_displacement *
+                               mesh_size);
+    if (!contacts)
+      return stable;
+    double cell_gap = std::numeric_limits<double>::infinity();
+    double wall_gap = cell_gap;
+    for (const CellGaps &gaps : measure_gaps(cells.membranes(),
+                                             cells.positions(),
+                                             domain.wall_radius,
+                                             domain.period))
+      {
+        cell_gap = std::min(cell_gap, gaps.to_cells);
+        wall_gap = std::min(wall_gap, gaps.to_wall);
+      }
+    const InteractionParameters &contact        = parameters.interactions;
+    const double                 membrane_limit = stable.limit;
+    const auto                   stiffness =
+      [](const double p0, const double range, const double gap) {
+        return p0 > 0. && gap > 0. && gap < range ?
+                 std::abs(RepulsivePotential(p0, range).pressure(gap).second) :
+                 0.;
+      };
+    const double viscosity = parameters.fluid.viscosity;
+    const double diameter  = parameters.cells.diameter;
+    stable.include_contact(viscosity,
+                           stiffness(contact.repulsion_pressure,
+                                     contact.repulsion_range,
+                                     cell_gap),
+                           diameter);
+    if (stable.contact < 0.01 * membrane_limit)
+      throw InputError(
+        "Layout/Minimum gap",
+        to_text(parameters.layout.minimum_gap),
+        "two cells start " + to_text(cell_gap) +
+          " µm apart, where the repulsion (Cell interactions/Repulsion "
+          "pressure and range) is so stiff that the step would have to be " +
+          to_text(stable.contact) +
+          " s, below a hundredth of the "
+          "membranes' " +
+          to_text(membrane_limit) + " s. Start the cells farther apart.");
+    stable.include_contact(viscosity,
+                           stiffness(contact.wall_pressure,
+                                     contact.wall_range,
+                                     wall_gap),
+                           diameter);
+    return stable;
   }
 
   void
@@ -224,6 +286,7 @@ namespace rbc_ifem
     }
     check_displacement(velocities, last_good);
     cells.move(velocities, dt);
+    watch_volumes(last_good);
     if (contacts)
       check_gaps(last_good);
     {
@@ -250,6 +313,19 @@ namespace rbc_ifem
                                  mean_axial_velocity);
       }
     return report;
+  }
+
+  void
+  IFEMSimulation::watch_volumes(const std::vector<Vector<double>> &last_good)
+  {
+    const std::vector<Vector<double>> x = cells.positions();
+    std::vector<double>               changes;
+    for (unsigned int c = 0; c < cells.size(); ++c)
+      changes.push_back(
+        cells.membranes()[c]->volume(x[c]) / cells.reference_volume(c) - 1.);
+    const std::string why = volume_watch.add(changes);
+    if (!why.empty())
+      stop(why, last_good);
   }
 
   void
@@ -427,22 +503,23 @@ namespace rbc_ifem
   {
     TimerOutput::Scope scope(timer, "output");
     const std::string &directory = parameters.output_directory;
-    record.fluid_files.emplace_back(
-      record.time, fluid.write_vtu(directory, record.step, frame_data()));
-    write_pvd(directory, "flow", record.fluid_files, communicator);
-    if (Utilities::MPI::this_mpi_process(communicator) == 0)
-      {
-        const std::vector<std::string> files =
-          cells.write_vtu(directory, "cell", record.step, frame_data());
-        for (unsigned int c = 0; c < cells.size(); ++c)
-          {
-            record.cell_files[c].emplace_back(record.time, files[c]);
-            write_pvd(directory,
-                      "cell_" + std::to_string(c),
-                      record.cell_files[c],
-                      communicator);
-          }
-      }
+    write_together(communicator, [&]() {
+      record.fluid_files.emplace_back(
+        record.time, fluid.write_vtu(directory, record.step, frame_data()));
+      write_pvd(directory, "flow", record.fluid_files, communicator);
+      if (Utilities::MPI::this_mpi_process(communicator) != 0)
+        return;
+      const std::vector<std::string> files =
+        cells.write_vtu(directory, "cell", record.step, frame_data());
+      for (unsigned int c = 0; c < cells.size(); ++c)
+        {
+          record.cell_files[c].emplace_back(record.time, files[c]);
+          write_pvd(directory,
+                    "cell_" + std::to_string(c),
+                    record.cell_files[c],
+                    communicator);
+        }
+    });
   }
 
   FieldData
@@ -456,15 +533,17 @@ namespace rbc_ifem
   void
   IFEMSimulation::write_tables() const
   {
-    if (Utilities::MPI::this_mpi_process(communicator) != 0)
-      return;
-    const std::string &directory = parameters.output_directory;
-    record.flow.write(directory + "/flow.csv");
-    record.cells.write(directory + "/cells.csv");
-    if (parameters.immersed.diffusion_interval > 0)
-      record.dm.write(directory + "/dm.csv");
-    for (const RunObserver *observer : observers)
-      observer->write_tables(directory);
+    write_together(communicator, [&]() {
+      if (Utilities::MPI::this_mpi_process(communicator) != 0)
+        return;
+      const std::string &directory = parameters.output_directory;
+      record.flow.write(directory + "/flow.csv");
+      record.cells.write(directory + "/cells.csv");
+      if (parameters.immersed.diffusion_interval > 0)
+        record.dm.write(directory + "/dm.csv");
+      for (const RunObserver *observer : observers)
+        observer->write_tables(directory);
+    });
   }
 
   void
@@ -477,7 +556,10 @@ namespace rbc_ifem
     state.record     = record;
     state.fluid      = fluid.state();
     state.positions  = cells.positions();
-    checkpoint.write(state, communicator);
+    for (const RunObserver *observer : observers)
+      state.observers.push_back(observer->state());
+    write_together(communicator,
+                   [&]() { checkpoint.write(state, communicator); });
   }
 
   void
@@ -490,6 +572,16 @@ namespace rbc_ifem
                        cells.size(),
                        cells.positions()[0].size(),
                        parameters.time.n_steps});
+    if (state.observers.size() != observers.size())
+      throw InputError("Immersed cells/Resume",
+                       "true",
+                       "the checkpoint " + checkpoint.resumed_from() +
+                         " comes from another experiment (it records " +
+                         std::to_string(state.observers.size()) +
+                         " observer(s), this one " +
+                         std::to_string(observers.size()) + ").");
+    for (unsigned int i = 0; i < observers.size(); ++i)
+      observers[i]->restore(state.observers[i]);
     record = state.record;
     fluid.set_state(state.fluid);
     cells.set_positions(state.positions);
@@ -502,13 +594,11 @@ namespace rbc_ifem
     write_tables();
     write_checkpoint();
     const std::string &directory = parameters.output_directory;
-    throw RunInterrupted(
-      signal,
-      signal_name(signal) + " at step " + std::to_string(record.step) +
-        ", t = " + to_text(record.time) + " s: the tables so far and " +
-        directory +
-        "/checkpoint.bin are written. To go on: rbc-ifem FILE.prm " +
-        "--set \"Immersed cells/Resume=true\"");
+    throw RunInterrupted(signal,
+                         signal_name(signal) + " at step " +
+                           std::to_string(record.step) + ", t = " +
+                           to_text(record.time) + " s: the tables so far and " +
+                           directory + "/checkpoint.bin are written.");
   }
 
   void

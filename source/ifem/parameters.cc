@@ -4,6 +4,8 @@
 
 #include <deal.II/base/utilities.h>
 
+#include <algorithm>
+
 namespace rbc_ifem
 {
   const SelectionNames<CouplingScheme> &
@@ -65,14 +67,15 @@ namespace rbc_ifem
   }
 
   double
-  TimeParameters::coupled_time_step(const double         limit,
-                                    const CouplingScheme scheme) const
+  TimeParameters::coupled_time_step(const CouplingTimeStepLimit &stable,
+                                    const CouplingScheme         scheme) const
   {
     if (!automatic_time_step())
       return time_step;
-    return scheme == CouplingScheme::explicit_forces ?
-             0.5 * limit :
-             semi_implicit_step_factor * limit;
+    return std::min(stable.advective,
+                    scheme == CouplingScheme::explicit_forces ?
+                      0.5 * stable.limit :
+                      semi_implicit_step_factor * stable.limit);
   }
 
   void
@@ -164,6 +167,16 @@ namespace rbc_ifem
                   "too long to be accurate: reduce Time/Time step).",
                   Patterns::Double(0.));
     add_parameter(prm,
+                  "Maximum volume change",
+                  max_volume_change,
+                  "The run stops, as diverged, if a cell's volume differs "
+                  "from its reference volume by more than this fraction "
+                  "(the volume penalty holds a stable run's within about "
+                  "1%), and so it does if a cell's volume oscillates from "
+                  "step to step with a growing amplitude (6 steps in a "
+                  "row, each change above 1e-4): an unstable coupling.",
+                  Patterns::Double(0.));
+    add_parameter(prm,
                   "Tether stiffness",
                   tether_stiffness,
                   "0: the cells are free. > 0: every membrane point is "
@@ -229,5 +242,8 @@ namespace rbc_ifem
     require_positive("Immersed cells/Maximum step displacement",
                      max_step_displacement,
                      " (a fraction of the fluid mesh size)");
+    require_positive("Immersed cells/Maximum volume change",
+                     max_volume_change,
+                     " (a fraction of the reference volume)");
   }
 } // namespace rbc_ifem

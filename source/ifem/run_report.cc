@@ -1,3 +1,4 @@
+#include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/output.h>
 #include <rbc_ifem/ifem/run_report.h>
 
@@ -37,9 +38,16 @@ namespace rbc_ifem
           << ", L = " << domain.length_symbol << ")\n"
           << "  explicit-coupling time step limit ≈ " << stable_step
           << " s (in-plane " << stable.in_plane << " s, bending "
-          << stable.bending
-          << " s); explicit runs stay stable below about 0.7 of it "
-             "(doc/ifem.md); coupling "
+          << stable.bending << " s"
+          << (std::isfinite(stable.contact) ?
+                ", repulsion at the starting gaps " + to_text(stable.contact) +
+                  " s" :
+                std::string())
+          << "); explicit runs stay stable below about 0.7 of it "
+             "(doc/ifem.md); advective limit "
+          << stable.advective
+          << " s (a point at U moves half the Maximum step displacement); "
+             "coupling "
           << name_of(parameters.immersed.coupling, coupling_scheme_names())
           << ", Δt = " << time_step << " s ("
           << (parameters.time.automatic_time_step() ? "Time step = auto, " : "")
@@ -68,6 +76,13 @@ namespace rbc_ifem
             << " s, or to auto, or set Immersed cells/Coupling = "
                "semi-implicit."
             << std::endl;
+    if (time_step > 2. * stable.advective)
+      pcout << "  WARNING: Time/Time step = " << time_step
+            << " s is more than twice the advective limit " << stable.advective
+            << " s: points moving at the run's speed may cross more than "
+               "Immersed cells/Maximum step displacement of h in a step, "
+               "which stops the run. Set it to auto, or below "
+            << 2. * stable.advective << " s." << std::endl;
     const InteractionParameters &contact = parameters.interactions;
     if (cells.size() > 1 && contact.repulsion_pressure > 0. &&
         contact.repulsion_range < spacing)

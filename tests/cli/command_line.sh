@@ -6,7 +6,9 @@
 # whose output must be a valid .prm that runs and give every parameter's
 # allowed values; the parameters.prm a run writes must run again and give the
 # same cells.csv; --set changes parameters, checked like the file, and
-# parameters.prm records them.
+# parameters.prm records them; magnitudes outside 1e-15 to 1e15 are refused;
+# a byte-order mark is read past, an entry set twice and an empty file warned
+# about.
 set -u
 exe=$1
 work=$(mktemp -d)
@@ -77,6 +79,25 @@ bad_set "parameter 'Layout/Number of cells' = '-2' is not allowed: a whole numbe
 bad_set "expected \"Subsection/Name=value\"" --set "Layout/Number of cells"
 bad_set "parameter 'Geometry/Capillary radius' = '0'" --set "Geometry/Capillary radius=0"
 "$exe" all.prm --set >/dev/null 2>&1 && fail "a --set without its value exits with status 0"
+# Magnitudes no physical value here takes.
+bad_set "parameter 'Fluid/Viscosity' = '1e308' is not allowed: a number of magnitude between 1e-15 and 1e15" \
+  --set "Fluid/Viscosity=1e308"
+bad_set "parameter 'Time/Time step' = '1e-300' is not allowed: a number of magnitude between 1e-15 and 1e15" \
+  --set "Time/Time step=1e-300"
+bad_set "parameter 'Geometry/Capillary radius' = '1e308'" --set "Geometry/Capillary radius=1e308"
+
+# A file that starts with a UTF-8 byte-order mark runs; an entry set twice
+# and a file that sets nothing run with a warning.
+{ printf '\xEF\xBB\xBF'; sed 's|^set Output directory.*|set Output directory = output/bom|' all.prm; } >bom.prm
+"$exe" bom.prm >bom.txt 2>&1 && [ -s output/bom/cells.csv ] || fail "a file with a byte-order mark: $(tail -2 bom.txt)"
+{ cat all.prm; printf 'set Output directory = output/twice\nsubsection Layout\n  set Number of cells = 2\nend\n'; } >twice.prm
+"$exe" twice.prm >twice.txt 2>&1 || fail "a file with an entry set twice: $(tail -2 twice.txt)"
+grep -q "warning: twice.prm, line [0-9]*: Layout/Number of cells is set again (first on line [0-9]*); this later value, 2, is the one used" twice.txt \
+  && echo "ok: $(grep warning twice.txt | grep 'Number of cells')" || fail "no warning for an entry set twice: $(head -3 twice.txt)"
+: >empty.prm
+"$exe" empty.prm --set "Output directory=output/empty" >empty.txt 2>&1 || fail "an empty file: $(tail -2 empty.txt)"
+grep -q "warning: empty.prm sets no parameter" empty.txt && echo "ok: $(grep warning empty.txt)" \
+  || fail "no warning for an empty file: $(head -2 empty.txt)"
 
 [ $failed -eq 0 ] && echo "ok: command line, defaults, --set and parameters.prm round trip"
 exit $failed

@@ -10,6 +10,16 @@
 namespace rbc_ifem
 {
   /**
+   * From now on, SIGINT and SIGTERM outside an InterruptionGuard stop the
+   * process at once with a message on standard error and the status 128 +
+   * the signal: while a run sets up (meshes, the first DM solve) there is
+   * nothing to save, and the files it writes appear whole or not at all.
+   * main() calls it first.
+   */
+  void
+  stop_on_interruption();
+
+  /**
    * SIGINT (Ctrl-C) and SIGTERM (what batch systems send before they kill a
    * job) caught while this object lives: a signal no longer ends the
    * process but sets a flag that a time loop reads between two steps

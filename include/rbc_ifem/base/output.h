@@ -34,6 +34,15 @@ namespace rbc_ifem
                           const MPI_Comm     communicator);
 
   /**
+   * Throw InputError on every rank, naming `Output directory` and the cause
+   * (such as "Read-only file system"), if rank 0 cannot create a file in
+   * @p directory, or, where it does not exist yet, in the folder it would
+   * be created in. Creates nothing that stays.
+   */
+  void
+  check_writable(const std::string &directory, const MPI_Comm communicator);
+
+  /**
    * VTU flags for every file we write: deal.II's default, the best zlib
    * compression, spends two thirds of a large run's output time in zlib;
    * the fastest level costs little in size.
@@ -74,12 +83,34 @@ namespace rbc_ifem
             const MPI_Comm                                     communicator);
 
   /**
-   * Write @p path through @p writer, via a temporary file and a rename, and
-   * note it among the files this process has written (written_files()).
+   * Write @p path through @p writer, via the temporary file PATH.part and a
+   * rename, and note it among the files this process has written
+   * (written_files()). Throws OutputError naming the file and the cause if
+   * it cannot be written; the `.part` is removed then, and a file of that
+   * name from before stays as it was.
    */
   void
   write_file_atomically(const std::string                         &path,
                         const std::function<void(std::ostream &)> &writer);
+
+  /// write_file_atomically() of the ready @p text.
+  void
+  write_text_atomically(const std::string &path, const std::string &text);
+
+  /**
+   * @p bytes as the file @p path, on the disk (fsync) when it returns.
+   * Throws OutputError with the cause, and removes what it wrote of @p path.
+   */
+  void
+  write_synced_file(const std::string &path, const std::string &bytes);
+
+  /**
+   * Rename @p from to @p to, replacing @p to in one step, and note @p to
+   * among the files written (written_files()); throws OutputError with the
+   * cause.
+   */
+  void
+  rename_written_file(const std::string &from, const std::string &to);
 
   /**
    * What this process has written into @p directory, for the closing line of

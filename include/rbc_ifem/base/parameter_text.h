@@ -5,6 +5,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 namespace rbc_ifem
 {
@@ -25,6 +26,39 @@ namespace rbc_ifem
   /// entry of @p prm.
   std::map<std::string, std::string>
   parameter_patterns(const ParameterHandler &prm);
+
+  /// One `set` line of a .prm text: "Subsection/.../Entry", the value, and
+  /// the line's number (from 1).
+  struct ParameterEntry
+  {
+    std::string  path;
+    std::string  value;
+    unsigned int line;
+  };
+
+  /// Every `set` line of a .prm @p text, in order.
+  std::vector<ParameterEntry>
+  parameter_entries(const std::string &text);
+
+  /**
+   * The text of the parameter file @p filename as ParameterHandler is to
+   * read it: without a UTF-8 byte-order mark at its start. Adds to
+   * @p warnings a line for each entry set twice in the same subsection (the
+   * later value counts), and one if the file sets nothing.
+   */
+  std::string
+  read_parameter_file(const std::string        &filename,
+                      std::vector<std::string> &warnings);
+
+  /**
+   * Throw InputError naming the first real-valued entry of @p prm (not a
+   * name, a switch or a whole number) with a number of magnitude below
+   * 1e-15 or above 1e15 (other than 0), or not finite: no physical value in our
+   * units (µm, s, pN) lies there, and such a number overflows or vanishes in
+   * the solvers.
+   */
+  void
+  check_magnitudes(const ParameterHandler &prm);
 
   /**
    * "Subsection/.../Entry" -> its value, for every `set` line of a .prm

@@ -1,6 +1,7 @@
 #ifndef rbc_ifem_experiments_experiment_h
 #define rbc_ifem_experiments_experiment_h
 
+#include <rbc_ifem/base/run_options.h>
 #include <rbc_ifem/parameters.h>
 
 #include <deal.II/base/conditional_ostream.h>
@@ -52,7 +53,8 @@ namespace rbc_ifem
   /**
    * What every experiment is made from (the registry gives it): its
    * registry name, the model's parameters, every parameter of the run as
-   * read (for parameters.prm) and the ranks it runs on.
+   * read (for parameters.prm), the ranks it runs on and the command line's
+   * options.
    */
   struct ExperimentContext
   {
@@ -60,6 +62,7 @@ namespace rbc_ifem
     const Parameters       &parameters;
     const ParameterHandler &prm;
     MPI_Comm                communicator;
+    RunOptions              options = {};
   };
 
   /**
@@ -68,7 +71,9 @@ namespace rbc_ifem
    * type: it implements setup() and execute(), and run() does what every
    * experiment does around them, in this order:
    *
-   *  1. the opening line "rbc-ifem: experiment 'NAME' on N rank(s)";
+   *  1. the opening line "rbc-ifem: experiment 'NAME' on N rank(s)", and
+   *     the Output directory checked: it can be written, and it holds no
+   *     earlier run's checkpoints this run would replace (RunOptions);
    *  2. setup(): build and check everything the parameters ask for. An
    *     impossible request throws InputError here, before anything is
    *     written (the constructors build nothing);
@@ -118,7 +123,18 @@ namespace rbc_ifem
     /// Every parameter of the run as read: what parameters.prm holds.
     const std::string parameter_file_text;
 
+    /// The command line's options (--overwrite, --force).
+    const RunOptions options;
+
   private:
+    /**
+     * Throw InputError if the Output directory cannot be written, or holds
+     * checkpoints of an earlier run that this one, neither resuming nor
+     * told to overwrite, would replace; remove them with --overwrite.
+     */
+    void
+    check_output_directory() const;
+
     const ParametersFile parameters_file;
   };
 } // namespace rbc_ifem

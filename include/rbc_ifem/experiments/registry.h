@@ -89,9 +89,17 @@ namespace rbc_ifem
     derive(const std::string                  &text,
            const std::vector<ParameterChange> &changes);
 
-    /// The experiment the parameters name, ready to run().
+    /// The experiment the parameters name, ready to run() with @p options.
     std::unique_ptr<Experiment>
-    create_experiment(const MPI_Comm communicator) const;
+    create_experiment(const MPI_Comm    communicator,
+                      const RunOptions &options = {}) const;
+
+    /**
+     * What read() found odd in the file but ran with (read_parameter_file()):
+     * entries set twice, a file that sets nothing.
+     */
+    const std::vector<std::string> &
+    read_warnings() const;
 
     /// The model's parameters as read.
     const Parameters &
@@ -118,7 +126,8 @@ namespace rbc_ifem
     void
     validate() const;
 
-    ParameterHandler prm;
+    ParameterHandler         prm;
+    std::vector<std::string> warnings; ///< read_warnings()
     /// The default is the registry's first.
     std::string experiment = experiment_types().front().name;
     Parameters  parameters;

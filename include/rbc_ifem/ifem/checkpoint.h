@@ -8,6 +8,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,12 +25,13 @@ namespace rbc_ifem
     RunRecord                   record;
     FluidState                  fluid;
     std::vector<Vector<double>> positions; ///< of each cell's points [µm]
+    std::vector<std::string>    observers; ///< each RunObserver::state()
 
     template <class Archive>
     void
     serialize(Archive &archive, const unsigned int)
     {
-      archive &n_ranks &parameters &record &fluid &positions;
+      archive &n_ranks &parameters &record &fluid &positions &observers;
     }
   };
 
@@ -60,16 +62,24 @@ namespace rbc_ifem
    * file of another format or layout is refused by name, not misread; a
    * truncated or damaged one is refused before anything is allocated for
    * it beyond its size.
+   *
+   * A new checkpoint is written whole to checkpoint.bin.part and synced to
+   * the disk; then checkpoint.bin becomes checkpoint_previous.bin and the
+   * new file checkpoint.bin, each in one rename. A run killed at any moment
+   * leaves a complete checkpoint.bin (the last one or the new one), and a
+   * resume that finds checkpoint.bin missing or damaged resumes from
+   * checkpoint_previous.bin and says so.
    */
   class Checkpoint
   {
   public:
     /**
-     * The format of what a checkpoint holds. Raise it (to the date) when
+     * The format of what a checkpoint holds. Raise it (to the date, with a
+     * two-digit serial for that day's changes: YYYYMMDDNN) when
      * layout_fingerprint() changes, and add the pair to the table of
      * tests/unit/ifem/checkpoint_format.cc, which fails until then.
      */
-    static constexpr unsigned int format = 20261205;
+    static constexpr unsigned int format = 2026120502;
 
     /**
      * A fingerprint of what a checkpoint holds: the CRC-32 of the serialised
@@ -84,34 +94,69 @@ namespace rbc_ifem
     /// The checkpoints in @p directory.
     explicit Checkpoint(const std::string &directory);
 
+    /**
+     * The checkpoint files in @p directory and in its folders one level
+     * down (the runs of a study), sorted; none if it does not exist.
+     */
+    static std::vector<std::string>
+    find_in(const std::string &directory);
+
     /// checkpoint.bin's path.
     std::string
     path() const;
 
+    /// Whether checkpoint.bin or checkpoint_previous.bin is there.
+    bool
+    exists() const;
+
+    /// checkpoint_previous.bin's path.
+    std::string
+    previous_path() const;
+
     /**
      * Write @p state as checkpoint.bin (on rank 0 of @p communicator; the
      * state is the same on every rank), the one before kept as
-     * checkpoint_previous.bin.
+     * checkpoint_previous.bin (see the class text). Throws OutputError with
+     * the cause if it cannot; the checkpoints from before stay then.
      */
     void
     write(const CheckpointState &state, const MPI_Comm communicator) const;
 
     /**
-     * Read checkpoint.bin and check that it can resume @p run: throws
-     * InputError naming Immersed cells/Resume and why it cannot be used (it
-     * does not exist, another format or layout, truncated, damaged, other
-     * ranks or DoFs), or the first parameter that differs from the run's
-     * that wrote it (other than those a resume may change), or Time/Number
-     * of steps if the run would not go beyond it.
+     * Read checkpoint.bin, or checkpoint_previous.bin if checkpoint.bin is
+     * missing or damaged (resumed_from() says which and why), and check that
+     * it can resume @p run: throws InputError naming Immersed cells/Resume
+     * and why neither can be used (they do not exist, another format or
+     * layout, truncated, damaged), or why the one read cannot (other ranks
+     * or DoFs), or the first parameter that differs from the run's that
+     * wrote it (other than those a resume may change), or Time/Number of
+     * steps if the checkpoint is beyond it (at it, the run is finished and
+     * the resume only writes its tables again).
      */
     CheckpointState
-    read(const ResumingRun &run) const;
+    read(const ResumingRun &run);
+
+    /// The file read() resumed from, and why if not checkpoint.bin.
+    const std::string &
+    resumed_from() const;
 
   private:
-    /// The payload of checkpoint.bin, checked; throws the reason it cannot
-    /// be used as a std::runtime_error.
+    /// The payload of @p file, checked; throws the reason it cannot be used
+    /// as a std::runtime_error.
     std::string
-    payload() const;
+    payload(const std::string &file) const;
+
+    /// The state in @p file, or nothing and @p why_not.
+    std::optional<CheckpointState>
+    load(const std::string &file, std::string &why_not) const;
+
+    /// Make checkpoint.bin checkpoint_previous.bin as well.
+    void
+    keep_as_previous() const;
+
+    /// Put the directory's renames on the disk.
+    void
+    sync_directory() const;
 
     /// Throw InputError naming the first parameter of @p run (other than
     /// those a resume may change) whose value differs from @p written's.
@@ -123,6 +168,11 @@ namespace rbc_ifem
     check_sizes(const CheckpointState &state, const ResumingRun &run) const;
 
     const std::string directory;
+    /// Whether write() keeps checkpoint.bin as checkpoint_previous.bin: not
+    /// after a resume that found it unusable.
+    bool rotate = true;
+    /// What resumed_from() says.
+    std::string source;
   };
 } // namespace rbc_ifem
 

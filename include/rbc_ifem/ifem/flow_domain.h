@@ -31,6 +31,12 @@ namespace rbc_ifem
     std::vector<CellPlacement> placements;
     /// Create the fluid mesh, before the band refinement around the cells.
     std::function<void(Triangulation<3> &)> create_mesh;
+    /// The cells of create_mesh()'s coarse mesh, which it refines
+    /// n_global_refinements times, and the volume they fill [µm³]: the size
+    /// estimate's start (SizeEstimate), known before any mesh is built.
+    unsigned int n_coarse_cells       = 0;
+    unsigned int n_global_refinements = 0;
+    double       volume               = 0.;
     /// The radius of the cylindrical wall about the x axis that the cells
     /// must stay inside (the capillary's); none for the shear box, whose
     /// walls the cells never reach.

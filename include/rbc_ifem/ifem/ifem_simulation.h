@@ -1,6 +1,7 @@
 #ifndef rbc_ifem_ifem_ifem_simulation_h
 #define rbc_ifem_ifem_ifem_simulation_h
 
+#include <rbc_ifem/base/run_options.h>
 #include <rbc_ifem/coupling/cell_population.h>
 #include <rbc_ifem/coupling/contact_gaps.h>
 #include <rbc_ifem/coupling/immersed_coupling.h>
@@ -14,6 +15,7 @@
 #include <rbc_ifem/ifem/run_record.h>
 #include <rbc_ifem/ifem/run_report.h>
 #include <rbc_ifem/ifem/step_schedule.h>
+#include <rbc_ifem/ifem/volume_watch.h>
 #include <rbc_ifem/parameters.h>
 
 #include <deal.II/base/conditional_ostream.h>
@@ -78,12 +80,14 @@ namespace rbc_ifem
     add_observer(RunObserver &observer);
 
     /**
-     * The fluid mesh, refined around the cells, the fluid, the coupling,
-     * the start-up report and, with Resume, the checkpoint: everything that
-     * can reject the input (InputError). Writes nothing.
+     * The size estimate (SizeEstimate: refused above the machine's memory
+     * unless @p options say --force), the fluid mesh, refined around the
+     * cells, the fluid, the coupling, the start-up report and, with Resume,
+     * the checkpoint: everything that can reject the input (InputError).
+     * Writes nothing.
      */
     void
-    setup();
+    setup(const RunOptions &options = {});
 
     /// The time loop, writing into Output directory, which must exist.
     void
@@ -102,6 +106,16 @@ namespace rbc_ifem
     /// DM solve would (a diffusion mesh too coarse for the membranes).
     void
     check_uptake_input() const;
+    /**
+     * The explicit coupling's time step estimate at the start: the
+     * membranes' (CouplingTimeStepLimit), the repulsion's at the gaps the
+     * cells start at, and the advective limit, in which a point at the
+     * run's speed moves half of Immersed cells/Maximum step displacement.
+     * Throws InputError if two cells start so close that the repulsion
+     * would need a hundredth of the membranes' step.
+     */
+    CouplingTimeStepLimit
+    time_step_limit() const;
     /**
      * Immersed cells/Coupling = semi-implicit: the fluid's velocity load
      * L = Δt Sᵀ K S (SemiImplicitLoad).
@@ -124,6 +138,10 @@ namespace rbc_ifem
     /// Steps 2-6 and the frame update; returns the fluid's report.
     StepReport
     advance();
+    /// Stop the run (restoring @p last_good) if a cell's volume has changed
+    /// too much or oscillates with a growing amplitude (VolumeWatch).
+    void
+    watch_volumes(const std::vector<Vector<double>> &last_good);
     /// Stop the run (restoring @p last_good) if a point moves farther in
     /// one step with @p velocities than Maximum step displacement allows.
     void
@@ -188,8 +206,9 @@ namespace rbc_ifem
     std::vector<RunObserver *>        observers;
     RunRecord                         record;
     const RunReport                   run_report;
-    const Checkpoint                  checkpoint;
+    Checkpoint                        checkpoint;
     const StepSchedule                schedule;
+    VolumeWatch                       volume_watch;
     /// Whether anything can touch: several cells, or a wall.
     bool   contacts  = false;
     double mesh_size = 0.; ///< fluid h at the membranes [µm]

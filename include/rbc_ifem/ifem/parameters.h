@@ -2,6 +2,7 @@
 #define rbc_ifem_ifem_parameters_h
 
 #include <rbc_ifem/base/parameter_tools.h>
+#include <rbc_ifem/coupling/time_step_limit.h>
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/tensor.h>
@@ -47,10 +48,12 @@ namespace rbc_ifem
     double
     plasma_time_step() const;
     /// Δt [s] of a run with immersed cells whose explicit-coupling
-    /// estimate is @p limit: for auto half of it with the explicit
-    /// coupling, semi_implicit_step_factor() times it with the semi-implicit.
+    /// estimate is @p stable: for auto half its limit with the explicit
+    /// coupling, semi_implicit_step_factor() times it with the
+    /// semi-implicit, and in either case at most its advective limit.
     double
-    coupled_time_step(const double limit, const CouplingScheme scheme) const;
+    coupled_time_step(const CouplingTimeStepLimit &stable,
+                      const CouplingScheme         scheme) const;
     /// Time step = auto's Δt over the explicit estimate, semi-implicit.
     static constexpr double semi_implicit_step_factor = 10.;
 
@@ -72,6 +75,7 @@ namespace rbc_ifem
     unsigned int checkpoint_interval = 0; ///< 0: never
     bool         resume = false; ///< from Output directory/checkpoint.bin
     double max_step_displacement = 0.25; ///< of the fluid mesh size h, per step
+    double max_volume_change     = 0.05; ///< of a cell's reference volume
     unsigned int progress_interval =
       10;                         ///< a progress line every this many steps
     double tether_stiffness = 0.; ///< springs to the start [pN/µm]; 0: free

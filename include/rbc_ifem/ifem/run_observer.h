@@ -4,6 +4,7 @@
 #include <rbc_ifem/coupling/cell_population.h>
 #include <rbc_ifem/diffusion/uptake.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -19,8 +20,9 @@ namespace rbc_ifem
    * experiment's Taylor deformation and the flowing layouts' DM history are
    * two.
    *
-   * Observers are not part of checkpoints: an experiment that installs one
-   * runs without Immersed cells/Resume.
+   * Observers are part of checkpoints: what state() returns is saved with
+   * the run, and restore() is handed it back when the run resumes, so that
+   * a resumed run's observer holds what it would have in one go.
    */
   class RunObserver
   {
@@ -51,7 +53,43 @@ namespace rbc_ifem
     /// Write the observer's tables into @p directory (rank 0's job).
     virtual void
     write_tables(const std::string &directory) const = 0;
+
+    /**
+     * What the observer has recorded, for a checkpoint (packed()). An
+     * observer that keeps a record over the run overrides it and restore();
+     * one that keeps nothing (the default: "") needs neither.
+     */
+    virtual std::string
+    state() const
+    {
+      return "";
+    }
+
+    /// Take back what state() returned when the checkpoint was written.
+    virtual void
+    restore(const std::string & /*state*/)
+    {}
   };
+
+  /// @p values as bytes, for RunObserver::state(): unpacked() gives them
+  /// back exactly.
+  inline std::string
+  packed(const std::vector<double> &values)
+  {
+    return std::string(reinterpret_cast<const char *>(values.data()),
+                       values.size() * sizeof(double));
+  }
+
+  /// The values packed() into @p bytes.
+  inline std::vector<double>
+  unpacked(const std::string &bytes)
+  {
+    std::vector<double> values(bytes.size() / sizeof(double));
+    std::copy(bytes.begin(),
+              bytes.begin() + values.size() * sizeof(double),
+              reinterpret_cast<char *>(values.data()));
+    return values;
+  }
 } // namespace rbc_ifem
 
 #endif

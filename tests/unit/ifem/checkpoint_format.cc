@@ -34,8 +34,8 @@ using namespace rbc_ifem;
 namespace
 {
   /// Every format and its layout fingerprint, oldest first.
-  const std::vector<std::pair<unsigned int, std::uint32_t>> formats = {
-    {20261205, 1449497722}};
+  const std::vector<std::pair<unsigned int, std::uint32_t>> formats =
+    {{20261205, 1449497722}, {2026120502, 3940604644}};
 
   /// The message of the InputError that reading @p directory's checkpoint
   /// for @p run throws, or "" if it is read.
@@ -125,6 +125,24 @@ main(int argc, char *argv[])
   check.holds("a header claiming more bytes than the file has is refused "
               "as truncated",
               too_long.find("truncated") != std::string::npos);
+
+  std::filesystem::remove_all(directory);
+  std::filesystem::create_directory(directory);
+  Checkpoint(directory).write(state, MPI_COMM_WORLD);
+  state.record.step = 4;
+  Checkpoint(directory).write(state, MPI_COMM_WORLD);
+  rewrite_header(path, "crc32", "1");
+  Checkpoint            fallback(directory);
+  const CheckpointState earlier = fallback.read(run);
+  std::cout << "checkpoint.bin damaged: resumed from "
+            << fallback.resumed_from() << ", step " << earlier.record.step
+            << '\n';
+  check.holds("a damaged checkpoint.bin gives way to the one before, "
+              "checkpoint_previous.bin, and the resume says so",
+              earlier.record.step == 3 &&
+                fallback.resumed_from().find(
+                  "checkpoint_previous.bin (checkpoint.bin: it is damaged") ==
+                  0);
   std::filesystem::remove_all(directory);
   return check.exit_code();
 }

@@ -20,11 +20,13 @@ namespace rbc_ifem
   }
 
   void
-  write_together(const MPI_Comm communicator, const std::function<void()> &write)
+  write_together(const MPI_Comm               communicator,
+                 const std::function<void()> &write)
   {
-    const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(communicator);
-    std::string        message;
-    unsigned int       failed = n_ranks;
+    const unsigned int n_ranks =
+      dealii::Utilities::MPI::n_mpi_processes(communicator);
+    std::string  message;
+    unsigned int failed = n_ranks;
     try
       {
         write();

@@ -19,10 +19,10 @@ namespace rbc_ifem
     // rank, fluid global refinements 1-3, diffusion band refinements 1-2;
     // doc/results/benchmarks/size_estimate.csv): what a rank holds besides
     // the meshes, and per estimated DoF of each mesh on it.
-    constexpr double base_mb                 = 200.;
-    constexpr double kb_per_fluid_dof        = 1.6;
-    constexpr double kb_per_diffusion_dof    = 8.;
-    constexpr double fluid_dofs_per_cell     = 25.;
+    constexpr double base_mb              = 200.;
+    constexpr double kb_per_fluid_dof     = 1.6;
+    constexpr double kb_per_diffusion_dof = 8.;
+    constexpr double fluid_dofs_per_cell  = 25.;
 
     /**
      * The cells of a mesh of @p n_coarse cells filling @p volume, refined
@@ -41,8 +41,9 @@ namespace rbc_ifem
       double h     = std::cbrt(volume / cells);
       for (unsigned int level = 0; level < n_band; ++level, h /= 2.)
         {
-          const double in_band = std::min(
-            area * 2. * (band_width + h) / (h * h * h), volume / (h * h * h));
+          const double in_band =
+            std::min(area * 2. * (band_width + h) / (h * h * h),
+                     volume / (h * h * h));
           cells += 7. * in_band;
         }
       return cells;
@@ -82,9 +83,8 @@ namespace rbc_ifem
                              const unsigned int n_ranks)
   {
     const MeshParameters &mesh = parameters.mesh;
-    const double          area =
-      domain.placements.size() *
-      EvansFungShape::of(parameters.cells).exact_area();
+    const double          area = domain.placements.size() *
+                        EvansFungShape::of(parameters.cells).exact_area();
     fluid_cells = refined_cells(domain.n_coarse_cells,
                                 domain.volume,
                                 domain.n_global_refinements,
@@ -117,9 +117,9 @@ namespace rbc_ifem
       kb_per_fluid_dof * fluid_dofs >= kb_per_diffusion_dof * diffusion_dofs;
     dominant_parameter = fluid_larger ? "Mesh/Fluid global refinements" :
                                         "Mesh/Diffusion global refinements";
-    dominant_value     = std::to_string(
-      fluid_larger ? mesh.fluid_global_refinements :
-                         mesh.diffusion_global_refinements);
+    dominant_value =
+      std::to_string(fluid_larger ? mesh.fluid_global_refinements :
+                                    mesh.diffusion_global_refinements);
   }
 
   std::string
@@ -156,9 +156,8 @@ namespace rbc_ifem
       return;
     std::ostringstream why;
     why.precision(3);
-    why << "the run would need about " << needed
-        << " MB on this machine (" << memory_mb
-        << " MB per rank; " << meshes() << "), and it has " << have
+    why << "the run would need about " << needed << " MB on this machine ("
+        << memory_mb << " MB per rank; " << meshes() << "), and it has " << have
         << " MB available. Lower the refinements, run on more machines, "
            "or give --force to run it anyway.";
     throw InputError(dominant_parameter, dominant_value, why.str());

@@ -31,9 +31,9 @@ namespace rbc_ifem
           std::abs(increment) > smallest_increment &&
           increment * last_increment[c] < 0. &&
           std::abs(increment) > std::abs(last_increment[c]);
-        growing[c]         = alternating_and_growing ? growing[c] + 1 : 0;
-        last_change[c]     = change;
-        last_increment[c]  = std::isfinite(increment) ? increment : 0.;
+        growing[c]        = alternating_and_growing ? growing[c] + 1 : 0;
+        last_change[c]    = change;
+        last_increment[c] = std::isfinite(increment) ? increment : 0.;
         if (growing[c] >= oscillating_steps)
           return "the volume of cell " + std::to_string(c) +
                  " oscillates from step to step with a growing amplitude "

@@ -48,7 +48,8 @@ namespace rbc_ifem
    * point instead of leaving the others waiting in a collective step.
    */
   void
-  write_together(const MPI_Comm communicator, const std::function<void()> &write);
+  write_together(const MPI_Comm               communicator,
+                 const std::function<void()> &write);
 } // namespace rbc_ifem
 
 #endif

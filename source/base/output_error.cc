@@ -42,4 +42,14 @@ namespace rbc_ifem
     message = dealii::Utilities::MPI::broadcast(communicator, message, failed);
     throw OutputError(message);
   }
+
+  void
+  write_on_rank_0(const MPI_Comm               communicator,
+                  const std::function<void()> &write)
+  {
+    write_together(communicator, [&]() {
+      if (dealii::Utilities::MPI::this_mpi_process(communicator) == 0)
+        write();
+    });
+  }
 } // namespace rbc_ifem

@@ -1,5 +1,6 @@
 #include <rbc_ifem/base/csv.h>
 #include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/output_error.h>
 #include <rbc_ifem/diffusion/co_diffusion.h>
 #include <rbc_ifem/experiments/diffusion_experiment.h>
 
@@ -30,13 +31,11 @@ namespace rbc_ifem
     for (unsigned int c = 0; c < uptake.dm_cells.size(); ++c)
       pcout << "    cell " << c << ": DM " << uptake.dm_cells[c] << std::endl;
 
-    if (Utilities::MPI::this_mpi_process(communicator) == 0)
-      {
-        cells->membranes.table().write(directory + "/cells.csv");
-        CsvTable dm(
-          dm_header(uptake.dm_cells.size(), !uptake.dl_cells.empty()));
-        dm.add_row(dm_row(0., uptake));
-        dm.write(directory + "/dm.csv");
-      }
+    write_on_rank_0(communicator, [&]() {
+      cells->membranes.table().write(directory + "/cells.csv");
+      CsvTable dm(dm_header(uptake.dm_cells.size(), !uptake.dl_cells.empty()));
+      dm.add_row(dm_row(0., uptake));
+      dm.write(directory + "/dm.csv");
+    });
   }
 } // namespace rbc_ifem

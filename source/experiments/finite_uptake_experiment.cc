@@ -1,6 +1,7 @@
 #include <rbc_ifem/base/csv.h>
 #include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/output_error.h>
 #include <rbc_ifem/base/parameter_tools.h>
 #include <rbc_ifem/experiments/finite_uptake_experiment.h>
 #include <rbc_ifem/experiments/registry.h>
@@ -170,7 +171,8 @@ namespace rbc_ifem
           }
       }
     create_output_directory(parameters.output_directory, communicator);
-    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+    write_on_rank_0(communicator, [&]() {
       table.write(parameters.output_directory + "/uptake.csv");
+    });
   }
 } // namespace rbc_ifem

@@ -1,5 +1,6 @@
 #include <rbc_ifem/base/csv.h>
 #include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/output_error.h>
 #include <rbc_ifem/base/solver_failure.h>
 #include <rbc_ifem/experiments/flow_experiment.h>
 #include <rbc_ifem/geometry/capillary_mesh.h>
@@ -55,10 +56,9 @@ namespace rbc_ifem
   FlowExperiment::execute()
   {
     const std::string &directory = parameters.output_directory;
-    const bool root = Utilities::MPI::this_mpi_process(communicator) == 0;
-    CsvTable   table("time,flow_rate,pressure_drop,max_velocity,"
-                     "divergence_l2,frame_velocity,newton_iterations,"
-                     "linear_iterations,lab_flow_rate");
+    CsvTable           table("time,flow_rate,pressure_drop,max_velocity,"
+                             "divergence_l2,frame_velocity,newton_iterations,"
+                             "linear_iterations,lab_flow_rate");
     std::vector<std::pair<double, std::string>> fields;
     const unsigned int n_steps = parameters.time.n_steps;
     const double       dt      = parameters.time.plasma_time_step();
@@ -74,8 +74,8 @@ namespace rbc_ifem
         catch (const SolverFailure &)
           {
             // The table up to the last good step, then stop.
-            if (root)
-              table.write(directory + "/flow.csv");
+            write_on_rank_0(communicator,
+                            [&]() { table.write(directory + "/flow.csv"); });
             throw;
           }
         const FlowMeasures m = fluid.measure();
@@ -100,10 +100,12 @@ namespace rbc_ifem
 
         if (step % parameters.time.output_interval == 0 || step == n_steps)
           {
-            fields.emplace_back(time, fluid.write_vtu(directory, step));
-            write_pvd(directory, "flow", fields, communicator);
-            if (root)
-              table.write(directory + "/flow.csv");
+            write_together(communicator, [&]() {
+              fields.emplace_back(time, fluid.write_vtu(directory, step));
+              write_pvd(directory, "flow", fields, communicator);
+              if (Utilities::MPI::this_mpi_process(communicator) == 0)
+                table.write(directory + "/flow.csv");
+            });
           }
       }
   }

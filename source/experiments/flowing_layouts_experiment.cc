@@ -1,5 +1,6 @@
 #include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/output_error.h>
 #include <rbc_ifem/base/parameter_tools.h>
 #include <rbc_ifem/experiments/derived_flow_run.h>
 #include <rbc_ifem/experiments/flowing_layouts_experiment.h>
@@ -287,14 +288,11 @@ namespace rbc_ifem
               << name_of(layout.kind, layout_kind_names()) << ", "
               << layout.n_cells << " cells, seed " << layout.seed
               << ", hematocrit " << hematocrits[r];
-        if (Utilities::MPI::this_mpi_process(communicator) == 0)
-          {
-            const CellLayout cells(layout,
-                                   parameters.geometry,
-                                   parameters.cells);
-            cells.table().write(parameters.output_directory + "/" +
-                                cells.file_name());
-          }
+        write_on_rank_0(communicator, [&]() {
+          const CellLayout cells(layout, parameters.geometry, parameters.cells);
+          cells.table().write(parameters.output_directory + "/" +
+                              cells.file_name());
+        });
         if (same_cells_as[r] < r)
           {
             pcout << ": the cells of run " << same_cells_as[r] + 1
@@ -308,12 +306,11 @@ namespace rbc_ifem
             results.push_back(run_one(r));
           }
         add_rows(r, results.back());
-        if (Utilities::MPI::this_mpi_process(communicator) == 0)
-          {
-            history.write(parameters.output_directory + "/flowing_layouts.csv");
-            summary.write(parameters.output_directory +
-                          "/flowing_layouts_summary.csv");
-          }
+        write_on_rank_0(communicator, [&]() {
+          history.write(parameters.output_directory + "/flowing_layouts.csv");
+          summary.write(parameters.output_directory +
+                        "/flowing_layouts_summary.csv");
+        });
         const FlowingLayoutResult &result  = results.back();
         const double               elapsed = clock.wall_time();
         pcout << "run " << r + 1 << " of " << runs.size() << ": DM "

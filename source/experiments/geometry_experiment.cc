@@ -1,4 +1,5 @@
 #include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/output_error.h>
 #include <rbc_ifem/experiments/geometry_experiment.h>
 #include <rbc_ifem/geometry/capillary_mesh.h>
 
@@ -94,18 +95,20 @@ namespace rbc_ifem
     TimerOutput::Scope scope(timer, "output");
     const std::string &directory = parameters.output_directory;
     create_output_directory(directory, communicator);
-    write_volume_mesh(fluid_mesh, directory, "fluid_mesh", communicator);
-    write_volume_mesh(diffusion_mesh,
-                      directory,
-                      "diffusion_mesh",
-                      communicator);
-    const std::string membrane_file = write_membranes(membranes->surfaces(),
-                                                      membranes->mapping(),
-                                                      directory,
-                                                      "membranes",
-                                                      communicator);
-    write_pvd(directory, "membranes", {{0., membrane_file}}, communicator);
-    if (Utilities::MPI::this_mpi_process(communicator) == 0)
-      membranes->table().write(directory + "/cells.csv");
+    write_together(communicator, [&]() {
+      write_volume_mesh(fluid_mesh, directory, "fluid_mesh", communicator);
+      write_volume_mesh(diffusion_mesh,
+                        directory,
+                        "diffusion_mesh",
+                        communicator);
+      const std::string membrane_file = write_membranes(membranes->surfaces(),
+                                                        membranes->mapping(),
+                                                        directory,
+                                                        "membranes",
+                                                        communicator);
+      write_pvd(directory, "membranes", {{0., membrane_file}}, communicator);
+      if (Utilities::MPI::this_mpi_process(communicator) == 0)
+        membranes->table().write(directory + "/cells.csv");
+    });
   }
 } // namespace rbc_ifem

@@ -1,5 +1,6 @@
 #include <rbc_ifem/base/csv.h>
 #include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/output_error.h>
 #include <rbc_ifem/experiments/layouts_experiment.h>
 
 #include <cmath>
@@ -59,13 +60,12 @@ namespace rbc_ifem
                   dm.size());
       }
     create_output_directory(parameters.output_directory, communicator);
-    if (Utilities::MPI::this_mpi_process(communicator) == 0)
-      {
-        table.write(parameters.output_directory + "/layouts.csv");
-        for (const auto &layouts : samples)
-          for (const auto &cells : layouts)
-            cells->layout.table().write(parameters.output_directory + "/" +
-                                        cells->layout.file_name());
-      }
+    write_on_rank_0(communicator, [&]() {
+      table.write(parameters.output_directory + "/layouts.csv");
+      for (const auto &layouts : samples)
+        for (const auto &cells : layouts)
+          cells->layout.table().write(parameters.output_directory + "/" +
+                                      cells->layout.file_name());
+    });
   }
 } // namespace rbc_ifem

@@ -1,5 +1,6 @@
 #include <rbc_ifem/base/csv.h>
 #include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/output_error.h>
 #include <rbc_ifem/base/parameter_tools.h>
 #include <rbc_ifem/experiments/mesh_convergence_experiment.h>
 
@@ -111,7 +112,8 @@ namespace rbc_ifem
         table.add_row(row.str());
       }
     create_output_directory(parameters.output_directory, communicator);
-    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+    write_on_rank_0(communicator, [&]() {
       table.write(parameters.output_directory + "/convergence.csv");
+    });
   }
 } // namespace rbc_ifem

@@ -1,5 +1,6 @@
 #include <rbc_ifem/base/csv.h>
 #include <rbc_ifem/base/input_error.h>
+#include <rbc_ifem/base/output_error.h>
 #include <rbc_ifem/base/parameter_tools.h>
 #include <rbc_ifem/coupling/cell_population.h>
 #include <rbc_ifem/coupling/time_step_limit.h>
@@ -345,8 +346,9 @@ namespace rbc_ifem
                       s.time_step,
                       s.n_steps,
                       s.wall_seconds);
-        if (Utilities::MPI::this_mpi_process(communicator) == 0)
+        write_on_rank_0(communicator, [&]() {
           summaries.write(parameters.output_directory + "/shear_summary.csv");
+        });
       }
   }
 } // namespace rbc_ifem

@@ -1,6 +1,7 @@
 #include <rbc_ifem/base/csv.h>
 #include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/output_error.h>
 #include <rbc_ifem/base/parameter_tools.h>
 #include <rbc_ifem/base/solver_failure.h>
 #include <rbc_ifem/experiments/stretching_experiment.h>
@@ -96,9 +97,10 @@ namespace rbc_ifem
   StretchingExperiment::execute()
   {
     // Rank 0 works alone; the others must learn if it failed, or they
-    // would wait for it in the closing collectives.
+    // would wait for it in the closing collectives (write_on_rank_0() tells
+    // them of a file it could not write).
     std::string failure;
-    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+    write_on_rank_0(communicator, [&]() {
       try
         {
           find_equilibria();
@@ -107,6 +109,7 @@ namespace rbc_ifem
         {
           failure = e.what();
         }
+    });
     failure = Utilities::MPI::broadcast(communicator, failure, 0);
     if (!failure.empty())
       throw SolverFailure(failure);

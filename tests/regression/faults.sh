@@ -13,7 +13,8 @@
 #  - a read-only Output directory is refused at input (status 1) and a full
 #    disk stops the run with status 3, the file and "No space left on
 #    device", and no .part left (both on a small tmpfs: skipped with a
-#    message where this machine may not mount one).
+#    message where this machine may not mount one); on two ranks the full
+#    disk stops both together, without MPI_Abort.
 set -u
 source "$(dirname "$0")/../script_setup.sh"
 exe=$1
@@ -110,6 +111,13 @@ if mkdir disk && mount -t tmpfs -o size=400k,ro tmpfs disk 2>/dev/null; then
   [ $status -eq 3 ] && grep -q "could not write 'disk/run/.*': No space left on device" full.log && [ "$parts" -eq 0 ] \
     && echo "ok: a full disk: $(grep stopped full.log | cut -c1-160)..." \
     || fail "a full disk: status $status, $parts .part files, $(tail -1 full.log)"
+  # On two ranks the ranks stop together: no MPI_Abort.
+  rm -rf disk/run
+  OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpirun -np 2 "$exe" readonly.prm >full2.log 2>&1
+  status=$?
+  [ $status -eq 3 ] && grep -q "No space left on device" full2.log && ! grep -q "MPI_ABORT" full2.log \
+    && echo "ok: a full disk on two ranks: status 3, no MPI_Abort" \
+    || fail "a full disk on two ranks: status $status, $(grep -c MPI_ABORT full2.log) MPI_ABORT lines, $(grep stopped full2.log | head -1)"
   umount disk
 else
   echo "skipped: no tmpfs can be mounted here for the read-only and full disk"

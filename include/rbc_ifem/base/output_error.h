@@ -50,6 +50,12 @@ namespace rbc_ifem
   void
   write_together(const MPI_Comm               communicator,
                  const std::function<void()> &write);
+
+  /// write_together() of @p write, called on rank 0 of @p communicator
+  /// alone: the tables that rank 0 writes for all.
+  void
+  write_on_rank_0(const MPI_Comm               communicator,
+                  const std::function<void()> &write);
 } // namespace rbc_ifem
 
 #endif

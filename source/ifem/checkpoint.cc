@@ -66,10 +66,15 @@ namespace rbc_ifem
     Value
     header_value(std::istream &in, const std::string &word)
     {
-      std::string found;
-      Value       value{};
-      in >> found >> value;
-      if (!in || found != word)
+      // A number read as text first: ">>" would read "-5" into an unsigned
+      // Value as a huge one.
+      std::string found, text;
+      in >> found >> text;
+      Value              value{};
+      std::istringstream number(text);
+      number >> value;
+      if (!in || found != word || text.empty() || text[0] == '-' || !number ||
+          !number.eof())
         throw std::runtime_error("its header is damaged");
       return value;
     }

@@ -125,6 +125,11 @@ main(int argc, char *argv[])
   check.holds("a header claiming more bytes than the file has is refused "
               "as truncated",
               too_long.find("truncated") != std::string::npos);
+  rewrite_header(path, "bytes", "-5");
+  const std::string negative = refusal(directory, run);
+  check.holds("a header with a negative byte count is refused as damaged",
+              negative.find("checkpoint.bin: its header is damaged") !=
+                std::string::npos);
 
   std::filesystem::remove_all(directory);
   std::filesystem::create_directory(directory);

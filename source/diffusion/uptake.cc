@@ -1,5 +1,6 @@
 #include <rbc_ifem/base/csv.h>
 #include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/output_error.h>
 #include <rbc_ifem/diffusion/diffusion_solver.h>
 #include <rbc_ifem/diffusion/uptake.h>
 
@@ -44,11 +45,14 @@ namespace rbc_ifem
                       const MPI_Comm         communicator,
                       const FieldData       &field_data)
   {
-    const DiffusionSolver::OutputFiles files =
-      diffusion.write_output(directory, "diffusion", counter, field_data);
-    pressure.emplace_back(time, files.pressure);
-    membranes.emplace_back(time, files.membranes);
-    write_pvd(directory, "diffusion", pressure, communicator);
-    write_pvd(directory, "diffusion_membranes", membranes, communicator);
+    // write_output() does what the ranks do together before it writes.
+    write_together(communicator, [&]() {
+      const DiffusionSolver::OutputFiles files =
+        diffusion.write_output(directory, "diffusion", counter, field_data);
+      pressure.emplace_back(time, files.pressure);
+      membranes.emplace_back(time, files.membranes);
+      write_pvd(directory, "diffusion", pressure, communicator);
+      write_pvd(directory, "diffusion_membranes", membranes, communicator);
+    });
   }
 } // namespace rbc_ifem

@@ -375,6 +375,10 @@ namespace rbc_ifem
                                                         frame_data());
                            });
       }
+    catch (const OutputError &)
+      {
+        throw;
+      }
     catch (const std::runtime_error &e)
       {
         // At the start the cells are the input, and what the solve
@@ -653,8 +657,12 @@ namespace rbc_ifem
   {
     record_shapes();
     if (parameters.immersed.diffusion_interval > 0)
-      pcout << "  t = 0 s: DM " << solve_uptake(0) << " µm³/(s Torr)"
-            << std::endl;
+      {
+        // Solved before the line starts: a solve that stops the run then
+        // leaves no half line.
+        const double dm = solve_uptake(0);
+        pcout << "  t = 0 s: DM " << dm << " µm³/(s Torr)" << std::endl;
+      }
     write_fields();
     write_tables();
   }

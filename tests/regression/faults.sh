@@ -118,6 +118,15 @@ if mkdir disk && mount -t tmpfs -o size=400k,ro tmpfs disk 2>/dev/null; then
   [ $status -eq 3 ] && grep -q "No space left on device" full2.log && ! grep -q "MPI_ABORT" full2.log \
     && echo "ok: a full disk on two ranks: status 3, no MPI_Abort" \
     || fail "a full disk on two ranks: status $status, $(grep -c MPI_ABORT full2.log) MPI_ABORT lines, $(grep stopped full2.log | head -1)"
+  # Room for parameters.prm alone: the first DM solve's fields fail.
+  rm -rf disk/run
+  mount -o remount,size=48k disk
+  OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpirun -np 2 "$exe" readonly.prm >full3.log 2>&1
+  status=$?
+  [ $status -eq 3 ] && grep -q "could not write 'disk/run/diffusion_0000.*No space left on device" full3.log \
+    && ! grep -q "MPI_ABORT" full3.log \
+    && echo "ok: the DM fields on a full disk, two ranks: status 3, no MPI_Abort" \
+    || fail "the DM fields on a full disk, two ranks: status $status, $(grep stopped full3.log | head -1)"
   umount disk
 else
   echo "skipped: no tmpfs can be mounted here for the read-only and full disk"

@@ -24,8 +24,9 @@ namespace rbc_ifem
                                        parameter_file_text,
                                        FlowDomain::capillary(parameters),
                                        communicator,
-                                       timer);
-    simulation->setup(options);
+                                       timer,
+                                       options);
+    simulation->setup();
   }
 
   void

@@ -37,9 +37,9 @@ namespace rbc_ifem
                       TimerOutput::never,
                       TimerOutput::wall_times);
     const std::string text = parameter_text(run.handler());
-    IFEMSimulation    simulation(p, text, domain, communicator, timer);
+    IFEMSimulation    simulation(p, text, domain, communicator, timer, options);
     simulation.add_observer(observer);
-    simulation.setup(options);
+    simulation.setup();
     write_together(communicator, [&]() {
       write_parameters(text, p.output_directory, communicator);
     });

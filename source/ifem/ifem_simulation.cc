@@ -12,7 +12,6 @@
 #include <rbc_ifem/geometry/capillary_mesh.h>
 #include <rbc_ifem/geometry/mesh_hierarchy.h>
 #include <rbc_ifem/ifem/ifem_simulation.h>
-#include <rbc_ifem/ifem/size_estimate.h>
 
 #include <cmath>
 #include <iomanip>
@@ -20,17 +19,40 @@
 
 namespace rbc_ifem
 {
+  namespace
+  {
+    /// The size estimate of a run, printed and checked (refused above the
+    /// machine's memory unless @p options say --force).
+    SizeEstimate
+    checked_size(const Parameters   &parameters,
+                 const FlowDomain   &domain,
+                 const MPI_Comm      communicator,
+                 const RunOptions   &options,
+                 ConditionalOStream &pcout)
+    {
+      const SizeEstimate size(parameters,
+                              domain,
+                              Utilities::MPI::n_mpi_processes(communicator));
+      pcout << "  " << size.text() << std::endl;
+      size.check(communicator, options.force);
+      return size;
+    }
+  } // namespace
+
   IFEMSimulation::IFEMSimulation(const Parameters  &parameters,
                                  const std::string &parameter_file_text,
                                  const FlowDomain  &domain,
                                  const MPI_Comm     communicator,
-                                 TimerOutput       &timer)
+                                 TimerOutput       &timer,
+                                 const RunOptions  &options)
     : parameters(parameters)
     , parameter_file_text(parameter_file_text)
     , communicator(communicator)
     , domain(domain)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
     , timer(timer)
+    , size_estimate(
+        checked_size(parameters, domain, communicator, options, pcout))
     , triangulation(communicator)
     , fluid(triangulation,
             parameters.fluid,
@@ -93,13 +115,8 @@ namespace rbc_ifem
   }
 
   void
-  IFEMSimulation::setup(const RunOptions &options)
+  IFEMSimulation::setup()
   {
-    const SizeEstimate size(parameters,
-                            domain,
-                            Utilities::MPI::n_mpi_processes(communicator));
-    pcout << "  " << size.text() << std::endl;
-    size.check(communicator, options.force);
     if (parameters.immersed.squeeze_into_lumen)
       {
         TimerOutput::Scope  scope(timer, "squeeze into lumen");

@@ -14,6 +14,7 @@
 #include <rbc_ifem/ifem/run_observer.h>
 #include <rbc_ifem/ifem/run_record.h>
 #include <rbc_ifem/ifem/run_report.h>
+#include <rbc_ifem/ifem/size_estimate.h>
 #include <rbc_ifem/ifem/step_schedule.h>
 #include <rbc_ifem/ifem/volume_watch.h>
 #include <rbc_ifem/parameters.h>
@@ -68,26 +69,28 @@ namespace rbc_ifem
      * The run of @p parameters, whose parameters.prm is
      * @p parameter_file_text (a checkpoint carries it, and a resume refuses
      * a checkpoint of other parameters); times its sections in @p timer.
+     * First, before it builds anything, it prints its SizeEstimate and
+     * refuses a run larger than the machine's memory, unless @p options say
+     * --force.
      */
     IFEMSimulation(const Parameters  &parameters,
                    const std::string &parameter_file_text,
                    const FlowDomain  &domain,
                    const MPI_Comm     communicator,
-                   TimerOutput       &timer);
+                   TimerOutput       &timer,
+                   const RunOptions  &options = {});
 
     /// Add @p observer (which must outlive the run) to those run() calls.
     void
     add_observer(RunObserver &observer);
 
     /**
-     * The size estimate (SizeEstimate: refused above the machine's memory
-     * unless @p options say --force), the fluid mesh, refined around the
-     * cells, the fluid, the coupling, the start-up report and, with Resume,
-     * the checkpoint: everything that can reject the input (InputError).
-     * Writes nothing.
+     * The fluid mesh, refined around the cells, the fluid, the coupling,
+     * the start-up report and, with Resume, the checkpoint: everything that
+     * can reject the input (InputError). Writes nothing.
      */
     void
-    setup(const RunOptions &options = {});
+    setup();
 
     /// The time loop, writing into Output directory, which must exist.
     void
@@ -194,6 +197,8 @@ namespace rbc_ifem
     const FlowDomain   domain;
     ConditionalOStream pcout;
     TimerOutput       &timer;
+    /// Made, printed and checked before anything else is built.
+    const SizeEstimate size_estimate;
     /// The fluid mesh: every rank holds its part (rank 0 builds it).
     parallel::fullydistributed::Triangulation<3> triangulation;
     FluidProblem                                 fluid;

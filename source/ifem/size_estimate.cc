@@ -16,12 +16,14 @@ namespace rbc_ifem
   namespace
   {
     // Fitted to the peaks that benchmarks/size_estimate.sh measures (one
-    // rank, fluid global refinements 1-3, diffusion band refinements 1-2;
-    // doc/results/benchmarks/size_estimate.csv): what a rank holds besides
-    // the meshes, and per estimated DoF of each mesh on it.
+    // rank, fluid global refinements 1-3, diffusion band refinements 1-2,
+    // 1 and 7 cells; doc/results/benchmarks/size_estimate.csv): what a rank
+    // holds besides the meshes and the membranes, per estimated DoF of each
+    // mesh on it, and per membrane point (every rank holds every membrane).
     constexpr double base_mb              = 200.;
     constexpr double kb_per_fluid_dof     = 1.6;
     constexpr double kb_per_diffusion_dof = 8.;
+    constexpr double kb_per_point         = 5.;
     constexpr double fluid_dofs_per_cell  = 25.;
 
     /**
@@ -110,16 +112,33 @@ namespace rbc_ifem
         diffusion_dofs =
           std::pow(parameters.diffusion.degree, 3) * diffusion_cells;
       }
-    memory_mb = base_mb + (kb_per_fluid_dof * fluid_dofs +
-                           kb_per_diffusion_dof * diffusion_dofs) /
-                            (1024. * n_ranks);
-    const bool fluid_larger =
-      kb_per_fluid_dof * fluid_dofs >= kb_per_diffusion_dof * diffusion_dofs;
-    dominant_parameter = fluid_larger ? "Mesh/Fluid global refinements" :
-                                        "Mesh/Diffusion global refinements";
-    dominant_value =
-      std::to_string(fluid_larger ? mesh.fluid_global_refinements :
-                                    mesh.diffusion_global_refinements);
+    // The cube's 6 faces, each split 4^s times, and their vertices.
+    membrane_points =
+      domain.placements.size() *
+      (6. * std::pow(4., parameters.cells.surface_refinements) + 2.);
+    memory_mb =
+      base_mb + kb_per_point * membrane_points / 1024. +
+      (kb_per_fluid_dof * fluid_dofs + kb_per_diffusion_dof * diffusion_dofs) /
+        (1024. * n_ranks);
+    // The parameter that makes the largest part, to name in a refusal.
+    const double fluid     = kb_per_fluid_dof * fluid_dofs / n_ranks;
+    const double diffusion = kb_per_diffusion_dof * diffusion_dofs / n_ranks;
+    const double membranes = kb_per_point * membrane_points;
+    if (membranes >= std::max(fluid, diffusion))
+      {
+        dominant_parameter = "Layout/Number of cells";
+        dominant_value     = std::to_string(domain.placements.size());
+      }
+    else if (fluid >= diffusion)
+      {
+        dominant_parameter = "Mesh/Fluid global refinements";
+        dominant_value     = std::to_string(mesh.fluid_global_refinements);
+      }
+    else
+      {
+        dominant_parameter = "Mesh/Diffusion global refinements";
+        dominant_value     = std::to_string(mesh.diffusion_global_refinements);
+      }
   }
 
   std::string
@@ -132,6 +151,7 @@ namespace rbc_ifem
     if (diffusion_cells > 0.)
       out << "; diffusion mesh about " << diffusion_cells << " cells, "
           << diffusion_dofs << " DoFs";
+    out << "; " << membrane_points << " membrane points";
     return out.str();
   }
 

@@ -20,7 +20,8 @@ namespace rbc_ifem
    * width of a membrane (and at least a cell's width, on either side) split
    * into eight. The DoFs are 25 per fluid cell (Q2 velocity and Q1
    * pressure, interior count) and k³ per diffusion cell (FE_Q(k)); the
-   * memory is a base plus a measured amount per DoF (the constants below,
+   * memory is a base plus a measured amount per DoF and per membrane point
+   * (every rank holds every membrane; the constants of size_estimate.cc,
    * from benchmarks/size_estimate.sh, which compares the estimate with what
    * runs build and use: doc/results/benchmarks/size_estimate.csv).
    */
@@ -50,6 +51,7 @@ namespace rbc_ifem
     double fluid_dofs      = 0.;
     double diffusion_cells = 0.; ///< 0 without DM solves
     double diffusion_dofs  = 0.;
+    double membrane_points = 0.; ///< of all cells, held by every rank
     double memory_mb       = 0.; ///< the peak of one rank [MB]
 
   private:

@@ -205,16 +205,7 @@ namespace rbc_ifem
                                mesh_size);
     if (!contacts)
       return stable;
-    double cell_gap = std::numeric_limits<double>::infinity();
-    double wall_gap = cell_gap;
-    for (const CellGaps &gaps : measure_gaps(cells.membranes(),
-                                             cells.positions(),
-                                             domain.wall_radius,
-                                             domain.period))
-      {
-        cell_gap = std::min(cell_gap, gaps.to_cells);
-        wall_gap = std::min(wall_gap, gaps.to_wall);
-      }
+    const auto [cell_gap, wall_gap]             = smallest_gaps();
     const InteractionParameters &contact        = parameters.interactions;
     const double                 membrane_limit = stable.limit;
     const auto                   stiffness =
@@ -506,17 +497,27 @@ namespace rbc_ifem
     return gaps;
   }
 
+  std::pair<double, double>
+  IFEMSimulation::smallest_gaps() const
+  {
+    double cell_gap = std::numeric_limits<double>::infinity();
+    double wall_gap = cell_gap;
+    for (const CellGaps &gaps : measure_gaps(cells.membranes(),
+                                             cells.positions(),
+                                             domain.wall_radius,
+                                             domain.period))
+      {
+        cell_gap = std::min(cell_gap, gaps.to_cells);
+        wall_gap = std::min(wall_gap, gaps.to_wall);
+      }
+    return {cell_gap, wall_gap};
+  }
+
   double
   IFEMSimulation::smallest_cell_gap() const
   {
-    double smallest = std::numeric_limits<double>::infinity();
-    if (cells.size() > 1)
-      for (const CellGaps &gaps : measure_gaps(cells.membranes(),
-                                               cells.positions(),
-                                               domain.wall_radius,
-                                               domain.period))
-        smallest = std::min(smallest, gaps.to_cells);
-    return smallest;
+    return cells.size() > 1 ? smallest_gaps().first :
+                              std::numeric_limits<double>::infinity();
   }
 
   void

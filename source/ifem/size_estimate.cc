@@ -51,6 +51,26 @@ namespace rbc_ifem
       return cells;
     }
 
+    /// The cells of the diffusion mesh of @p parameters around membranes
+    /// of total @p area: refined_cells() of its coarse mesh (the lumen, the
+    /// wall and the gas layer).
+    double
+    diffusion_mesh_cells(const Parameters &parameters, const double area)
+    {
+      const GeometryParameters &geometry = parameters.geometry;
+      Triangulation<3>          coarse;
+      create_diffusion_mesh(coarse, geometry, 0);
+      const double outer = geometry.capillary_radius + geometry.wall_thickness +
+                           geometry.gas_layer_thickness;
+      return refined_cells(coarse.n_active_cells(),
+                           numbers::PI * outer * outer *
+                             geometry.capillary_length,
+                           parameters.mesh.diffusion_global_refinements,
+                           area,
+                           parameters.mesh.band_width,
+                           parameters.mesh.diffusion_band_refinements);
+    }
+
     /// MemAvailable of /proc/meminfo [MB]; infinite where it cannot be read.
     double
     available_mb()
@@ -84,9 +104,10 @@ namespace rbc_ifem
                              const FlowDomain  &domain,
                              const unsigned int n_ranks)
   {
-    const MeshParameters &mesh = parameters.mesh;
-    const double          area = domain.placements.size() *
-                        EvansFungShape::of(parameters.cells).exact_area();
+    const MeshParameters &mesh    = parameters.mesh;
+    const unsigned int    n_cells = domain.placements.size();
+    const double          area =
+      n_cells * EvansFungShape::of(parameters.cells).exact_area();
     fluid_cells = refined_cells(domain.n_coarse_cells,
                                 domain.volume,
                                 domain.n_global_refinements,
@@ -96,38 +117,32 @@ namespace rbc_ifem
     fluid_dofs  = fluid_dofs_per_cell * fluid_cells;
     if (parameters.immersed.diffusion_interval > 0 && domain.wall_radius)
       {
-        const GeometryParameters &geometry = parameters.geometry;
-        Triangulation<3>          coarse;
-        create_diffusion_mesh(coarse, geometry, 0);
-        const double outer = geometry.capillary_radius +
-                             geometry.wall_thickness +
-                             geometry.gas_layer_thickness;
-        diffusion_cells =
-          refined_cells(coarse.n_active_cells(),
-                        numbers::PI * outer * outer * geometry.capillary_length,
-                        mesh.diffusion_global_refinements,
-                        area,
-                        mesh.band_width,
-                        mesh.diffusion_band_refinements);
+        diffusion_cells = diffusion_mesh_cells(parameters, area);
         diffusion_dofs =
           std::pow(parameters.diffusion.degree, 3) * diffusion_cells;
       }
     // The cube's 6 faces, each split 4^s times, and their vertices.
     membrane_points =
-      domain.placements.size() *
-      (6. * std::pow(4., parameters.cells.surface_refinements) + 2.);
+      n_cells * (6. * std::pow(4., parameters.cells.surface_refinements) + 2.);
     memory_mb =
       base_mb + kb_per_point * membrane_points / 1024. +
       (kb_per_fluid_dof * fluid_dofs + kb_per_diffusion_dof * diffusion_dofs) /
         (1024. * n_ranks);
-    // The parameter that makes the largest part, to name in a refusal.
+    name_largest_part(mesh, n_cells, n_ranks);
+  }
+
+  void
+  SizeEstimate::name_largest_part(const MeshParameters &mesh,
+                                  const unsigned int    n_cells,
+                                  const unsigned int    n_ranks)
+  {
     const double fluid     = kb_per_fluid_dof * fluid_dofs / n_ranks;
     const double diffusion = kb_per_diffusion_dof * diffusion_dofs / n_ranks;
     const double membranes = kb_per_point * membrane_points;
     if (membranes >= std::max(fluid, diffusion))
       {
         dominant_parameter = "Layout/Number of cells";
-        dominant_value     = std::to_string(domain.placements.size());
+        dominant_value     = std::to_string(n_cells);
       }
     else if (fluid >= diffusion)
       {

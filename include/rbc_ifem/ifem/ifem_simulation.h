@@ -163,6 +163,10 @@ namespace rbc_ifem
     /// cell reaches the wall.
     std::vector<CellGaps>
     check_gaps(const std::vector<Vector<double>> &last_good);
+    /// The smallest gap between the membranes of two cells now, and
+    /// between a membrane and the wall [µm] (infinite where there is none).
+    std::pair<double, double>
+    smallest_gaps() const;
     /// The smallest gap between the membranes of two cells now [µm]
     /// (infinite for one cell).
     double

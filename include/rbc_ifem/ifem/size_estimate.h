@@ -55,6 +55,13 @@ namespace rbc_ifem
     double memory_mb       = 0.; ///< the peak of one rank [MB]
 
   private:
+    /// Set the parameter behind the largest part of the memory (the fluid
+    /// mesh, the diffusion mesh or the membranes), to name in a refusal.
+    void
+    name_largest_part(const MeshParameters &mesh,
+                      const unsigned int    n_cells,
+                      const unsigned int    n_ranks);
+
     /// "fluid mesh about N cells, M DoFs; diffusion mesh ...".
     std::string
     meshes() const;

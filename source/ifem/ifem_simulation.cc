@@ -681,8 +681,9 @@ namespace rbc_ifem
         const double dm = solve_uptake(0);
         pcout << "  t = 0 s: DM " << dm << " µm³/(s Torr)" << std::endl;
       }
-    write_fields();
+    // The tables first: small, and what a full disk should leave whole.
     write_tables();
+    write_fields();
   }
 
   void
@@ -716,8 +717,8 @@ namespace rbc_ifem
       progress << observer->progress(shapes);
     if (due.output)
       {
-        write_fields();
         write_tables();
+        write_fields();
       }
     pcout << progress.str() << "  "
           << time_left_text(clock.wall_time(),

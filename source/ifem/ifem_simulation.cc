@@ -326,8 +326,8 @@ namespace rbc_ifem
   void
   IFEMSimulation::watch_volumes(const std::vector<Vector<double>> &last_good)
   {
-    const std::vector<Vector<double>> x = cells.positions();
-    std::vector<double>               changes;
+    const std::vector<Vector<double>> &x = cells.positions();
+    std::vector<double>                changes;
     for (unsigned int c = 0; c < cells.size(); ++c)
       changes.push_back(
         cells.membranes()[c]->volume(x[c]) / cells.reference_volume(c) - 1.);

@@ -32,3 +32,8 @@ enter_scratch_directory() {
   trap 'rm -rf "$work"' EXIT
   cd "$work" || exit 1
 }
+
+# fail MESSAGE: print it as a failure and mark the script failed (failed=1;
+# the script exits with $failed at its end).
+failed=0
+fail() { echo "FAILED: $*"; failed=1; }

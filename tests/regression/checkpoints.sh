@@ -15,8 +15,6 @@ exe=$1
 prm=$2
 numdiff=$3
 enter_scratch_directory
-failed=0
-fail() { echo "FAILED: $*"; failed=1; }
 
 steps=$(sed -n 's/^ *set Number of steps *= *//p' "$prm")
 variant() { # directory steps resume [more entries for Immersed cells]

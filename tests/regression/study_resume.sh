@@ -13,8 +13,6 @@ exe=$1
 prm=$2
 numdiff=$3
 enter_scratch_directory
-failed=0
-fail() { echo "FAILED: $*"; failed=1; }
 
 variant() { # directory
   cat "$prm"

@@ -1,5 +1,6 @@
 #include <rbc_ifem/base/output.h>
 #include <rbc_ifem/diffusion/diffusion_solver.h>
+#include <rbc_ifem/diffusion/end_periodicity.h>
 #include <rbc_ifem/geometry/capillary_mesh.h>
 
 #include <deal.II/base/function.h>
@@ -22,55 +23,6 @@ namespace rbc_ifem
 {
   namespace
   {
-    using DoFCell = DoFHandler<3>::cell_iterator;
-
-    /// Whether every active cell of @p cell's subtree on face @p f carries
-    /// the pressure: neither artificial nor inside a membrane (FE_Nothing).
-    bool
-    carries_pressure(const DoFCell &cell, const unsigned int f)
-    {
-      if (cell->is_active())
-        return !cell->is_artificial() && cell->get_fe().n_dofs_per_cell() > 0;
-      for (unsigned int i = 0; i < GeometryInfo<3>::max_children_per_face; ++i)
-        if (!carries_pressure(cell->child(GeometryInfo<3>::child_cell_on_face(
-                                RefinementCase<3>::isotropic_refinement, f, i)),
-                              f))
-          return false;
-      return true;
-    }
-
-    /**
-     * The periodicity constraints of the end faces @p f1 of @p cell1 and
-     * @p f2 of @p cell2 (a translation along the axis, so their subfaces
-     * match in order). DoFTools::make_periodicity_constraints() needs the
-     * pressure on both sides: where a cut cell's membrane crosses an end, the
-     * faces inside it (FE_Nothing) are left out, as are faces of cells this
-     * rank does not see.
-     */
-    void
-    constrain_periodic_faces(const DoFCell             &cell1,
-                             const unsigned int         f1,
-                             const DoFCell             &cell2,
-                             const unsigned int         f2,
-                             AffineConstraints<double> &constraints)
-    {
-      if (carries_pressure(cell1, f1) && carries_pressure(cell2, f2))
-        DoFTools::make_periodicity_constraints(cell1->face(f1),
-                                               cell2->face(f2),
-                                               constraints);
-      else if (cell1->has_children() && cell2->has_children())
-        for (unsigned int i = 0; i < GeometryInfo<3>::max_children_per_face;
-             ++i)
-          constrain_periodic_faces(
-            cell1->child(GeometryInfo<3>::child_cell_on_face(
-              RefinementCase<3>::isotropic_refinement, f1, i)),
-            f1,
-            cell2->child(GeometryInfo<3>::child_cell_on_face(
-              RefinementCase<3>::isotropic_refinement, f2, i)),
-            f2,
-            constraints);
-    }
-
     /**
      * -flux n on a membrane: the flux vector, pointing into the cell.
      * DataOut gives normals to postprocessors only on faces (DataOutFaces),
@@ -257,24 +209,7 @@ namespace rbc_ifem
       constraints,
       first);
     if (period)
-      {
-        std::vector<GridTools::PeriodicFacePair<DoFHandler<3>::cell_iterator>>
-          ends;
-        GridTools::collect_periodic_faces(dof_handler,
-                                          DiffusionBoundary::inlet_end,
-                                          DiffusionBoundary::outlet_end,
-                                          /*direction=*/0,
-                                          ends);
-        for (const auto &pair : ends)
-          {
-            Assert(pair.orientation == std::bitset<3>(1), ExcInternalError());
-            constrain_periodic_faces(pair.cell[0],
-                                     pair.face_idx[0],
-                                     pair.cell[1],
-                                     pair.face_idx[1],
-                                     constraints);
-          }
-      }
+      make_end_periodicity_constraints(dof_handler, constraints);
     // On a distributed mesh a ghost cell's nodes can hang on a cell this
     // rank does not see, and the cut cells' ghost penalty reaches across to
     // them: each such constraint comes from the rank that owns the node.

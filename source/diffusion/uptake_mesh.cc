@@ -126,14 +126,23 @@ namespace rbc_ifem
     create_diffusion_mesh(serial,
                           geometry,
                           mesh_parameters.diffusion_global_refinements);
+    const auto match_ends = [this, &serial]() {
+      if (geometry.period())
+        match_end_refinement(serial);
+    };
     if (geometry.period())
       add_end_periodicity(serial);
     refine_near_points(serial,
                        band_points,
                        mesh_parameters.band_width,
                        mesh_parameters.diffusion_band_refinements);
+    // After each step, as the mesh was whose cells the next step names.
+    match_ends();
     for (const std::vector<CellId> &cells : refinements)
-      refine_cells_and_neighbors(serial, cells);
+      {
+        refine_cells_and_neighbors(serial, cells);
+        match_ends();
+      }
   }
 
   void

@@ -224,6 +224,64 @@ namespace rbc_ifem
     mesh.add_periodicity(ends);
   }
 
+  namespace
+  {
+    using MeshCell = Triangulation<3>::cell_iterator;
+
+    /**
+     * Flag for refinement each active cell on face @p fa of @p a's subtree
+     * whose image on face @p fb of @p b's subtree is refined, and the other
+     * way round; whether any was flagged.
+     */
+    bool
+    flag_coarser_end(const MeshCell    &a,
+                     const unsigned int fa,
+                     const MeshCell    &b,
+                     const unsigned int fb)
+    {
+      if (a->has_children() && b->has_children())
+        {
+          bool flagged = false;
+          for (unsigned int i = 0; i < GeometryInfo<3>::max_children_per_face;
+               ++i)
+            flagged |= flag_coarser_end(
+              a->child(GeometryInfo<3>::child_cell_on_face(
+                RefinementCase<3>::isotropic_refinement, fa, i)),
+              fa,
+              b->child(GeometryInfo<3>::child_cell_on_face(
+                RefinementCase<3>::isotropic_refinement, fb, i)),
+              fb);
+          return flagged;
+        }
+      if (a->has_children() == b->has_children())
+        return false;
+      (a->has_children() ? b : a)->set_refine_flag();
+      return true;
+    }
+  } // namespace
+
+  void
+  match_end_refinement(Triangulation<3> &mesh)
+  {
+    // Each round refines only where the ends differ, and the smoothing it
+    // sets off may make them differ elsewhere: until nothing is flagged.
+    for (;;)
+      {
+        std::vector<GridTools::PeriodicFacePair<MeshCell>> ends;
+        GridTools::collect_periodic_faces(
+          mesh, FluidBoundary::inlet, FluidBoundary::outlet, 0, ends);
+        bool flagged = false;
+        for (const auto &pair : ends)
+          flagged |= flag_coarser_end(pair.cell[0],
+                                      pair.face_idx[0],
+                                      pair.cell[1],
+                                      pair.face_idx[1]);
+        if (!flagged)
+          return;
+        mesh.execute_coarsening_and_refinement();
+      }
+  }
+
   Point<3>
   wrap_into_segment(const Point<3> &p, const std::optional<double> &period)
   {

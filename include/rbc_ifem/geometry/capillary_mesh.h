@@ -102,6 +102,21 @@ namespace rbc_ifem
   add_end_periodicity(Triangulation<3> &mesh);
 
   /**
+   * Refine the cells at either end face of @p mesh (periodic:
+   * add_end_periodicity()) whose image at the other end is finer, until the
+   * two ends are refined alike: then every active face of one end has one
+   * active face of the other as its image, and periodicity can be imposed
+   * DoF by DoF, each pair the same way on every rank
+   * (make_end_periodicity_constraints()). Refinement by a band or by the
+   * gaps between cells can leave the ends unlike, and with unlike ends the
+   * constraints must run from the finer end to the coarser one, both ways
+   * at once on a long enough face: a cycle that AffineConstraints::close()
+   * does not leave.
+   */
+  void
+  match_end_refinement(Triangulation<3> &mesh);
+
+  /**
    * @p p moved along x by a multiple of @p period into [0, period): where a
    * point of a cell that crossed the end of a periodic segment lies in the
    * segment's meshes. Without a period, @p p itself.

@@ -43,6 +43,18 @@ namespace rbc_ifem
 
     /// The largest mapping degree the fixed-size evaluation supports.
     constexpr unsigned int max_degree = 4;
+
+    /// Below this alignment of x - F with the normal at a closest point F
+    /// inside a patch (Gauss-Newton short of a true minimum) the winding
+    /// number gives the side.
+    constexpr double min_alignment = 0.9;
+
+    /// Whether a reference coordinate lies on the unit square's edge.
+    bool
+    on_edge(const double t)
+    {
+      return t == 0. || t == 1.;
+    }
   } // namespace
 
   struct MembraneDistance::Tree
@@ -93,8 +105,15 @@ namespace rbc_ifem
       {
         const unsigned int first  = patches.size();
         double             volume = 0.;
+        first_patch.push_back(first);
+        first_vertex.push_back(vertex_patches.size());
+        vertex_patches.resize(vertex_patches.size() +
+                              membranes[m]->n_vertices());
         for (const auto &cell : membranes[m]->active_cell_iterators())
           {
+            for (const unsigned int v : cell->vertex_indices())
+              vertex_patches[first_vertex[m] + cell->vertex_index(v)].push_back(
+                patches.size());
             Patch patch{m, cell, {}, 1.};
             node_values.reinit(cell);
             patch.nodes = node_values.get_quadrature_points();
@@ -164,15 +183,27 @@ namespace rbc_ifem
   {
     // Gauss-Newton on |F(ξ) - x|², ξ kept in the unit square: near the
     // surface, where the level set matters, it converges in a few steps.
+    // Clamped to the square it need not descend: on a patch whose corner
+    // is sharp (12° at the rim of a cell squeezed through a 6 µm
+    // capillary) it can leave a start at that corner, the closest point of
+    // a node far behind the rim, for a farther point of an edge. So the
+    // closest ξ it visits is the answer, never farther than the start.
     Point<3>     F;
     Tensor<1, 3> dF0, dF1;
+    Point<2>     closest_xi       = xi;
+    double       closest_distance = std::numeric_limits<double>::infinity();
     for (unsigned int iteration = 0; iteration < 30; ++iteration)
       {
         evaluate(patch, xi, F, dF0, dF1);
-        const Tensor<1, 3> r   = F - x;
-        const double       a00 = dF0 * dF0, a01 = dF0 * dF1, a11 = dF1 * dF1;
-        const double       g0 = dF0 * r, g1 = dF1 * r;
-        const double       det = a00 * a11 - a01 * a01;
+        const Tensor<1, 3> r = F - x;
+        if (r.norm() < closest_distance)
+          {
+            closest_distance = r.norm();
+            closest_xi       = xi;
+          }
+        const double a00 = dF0 * dF0, a01 = dF0 * dF1, a11 = dF1 * dF1;
+        const double g0 = dF0 * r, g1 = dF1 * r;
+        const double det = a00 * a11 - a01 * a01;
         if (!(det > 0.))
           break;
         const Point<2> previous = xi;
@@ -184,6 +215,11 @@ namespace rbc_ifem
           break;
       }
     evaluate(patch, xi, F, dF0, dF1);
+    if (x.distance(F) > closest_distance)
+      {
+        xi = closest_xi;
+        evaluate(patch, xi, F, dF0, dF1);
+      }
 
     ClosestPoint result;
     result.membrane  = patch.membrane;
@@ -223,6 +259,74 @@ namespace rbc_ifem
     return angle / (4. * numbers::PI);
   }
 
+  double
+  MembraneDistance::side(const Candidate &best) const
+  {
+    const Point<2> &xi = best.point.reference;
+    if (!on_edge(xi[0]) && !on_edge(xi[1]))
+      {
+        if (best.alignment >= min_alignment)
+          return best.point.signed_distance < 0. ? -1. : 1.;
+      }
+    else if (bool outside; patches_around_agree(best, outside))
+      return outside ? 1. : -1.;
+    return winding_number(best.point.membrane, best.x) > 0.5 ? -1. : 1.;
+  }
+
+  bool
+  MembraneDistance::patches_around_agree(const Candidate &best,
+                                         bool            &outside) const
+  {
+    const Patch       &patch     = patches[best.patch];
+    const Point<2>    &xi        = best.point.reference;
+    const Tensor<1, 3> r         = best.x - best.point.point;
+    unsigned int       n_outside = 0, n_inside = 0;
+    const auto         count = [&](const Tensor<1, 3> &normal) {
+      (r * normal > 0. ? n_outside : n_inside) += 1;
+    };
+    if (on_edge(xi[0]) && on_edge(xi[1]))
+      {
+        const unsigned int corner = (xi[0] == 1.) + 2 * (xi[1] == 1.);
+        const unsigned int vertex = patch.cell->vertex_index(corner);
+        for (const unsigned int k :
+             vertex_patches[first_vertex[patch.membrane] + vertex])
+          for (const unsigned int c : patches[k].cell->vertex_indices())
+            if (patches[k].cell->vertex_index(c) == vertex)
+              count(
+                normal_at(patches[k], GeometryInfo<2>::unit_cell_vertex(c)));
+      }
+    else if (const unsigned int face =
+               on_edge(xi[0]) ? (xi[0] == 0. ? 0 : 1) : (xi[1] == 0. ? 2 : 3);
+             patch.cell->at_boundary(face))
+      count(best.point.normal); // the edge of an open surface
+    else
+      {
+        const auto         neighbor = patch.cell->neighbor(face);
+        const unsigned int back     = patch.cell->neighbor_of_neighbor(face);
+        // F lies on the edge the two share: projected from the middle of
+        // that edge on the neighbour, it is found there.
+        const Point<2> start(back < 2 ? back : 0.5, back < 2 ? 0.5 : back - 2);
+        count(best.point.normal);
+        count(project(patches[first_patch[patch.membrane] +
+                              neighbor->active_cell_index()],
+                      best.point.point,
+                      start)
+                .normal);
+      }
+    outside = n_outside > 0;
+    return n_outside == 0 || n_inside == 0;
+  }
+
+  Tensor<1, 3>
+  MembraneDistance::normal_at(const Patch &patch, const Point<2> &xi) const
+  {
+    Point<3>     F;
+    Tensor<1, 3> dF0, dF1;
+    evaluate(patch, xi, F, dF0, dF1);
+    const Tensor<1, 3> normal = cross_product_3d(dF0, dF1);
+    return patch.orientation / normal.norm() * normal;
+  }
+
   std::size_t
   MembraneDistance::PointHash::operator()(const Point<3> &x) const
   {
@@ -251,6 +355,7 @@ namespace rbc_ifem
         Candidate candidate;
         candidate.point = project(patches[sample_patch[k]], x, sample_xi[k]);
         candidate.x     = x;
+        candidate.patch = sample_patch[k];
         const double distance = std::abs(candidate.point.signed_distance);
         candidate.alignment =
           distance > 0. ?
@@ -285,28 +390,25 @@ namespace rbc_ifem
 
     // The side of x: from the normal at the closest point F, which is exact
     // where F lies inside a patch (x - F is then along the normal). Where F
-    // lies on an edge or a corner that patches share, each of them finds it
-    // with its own normal, and x - F lies in the cone of those normals: on a
-    // sharp fold (a parachute's rim at high capillary number, seen from
-    // afar) one of them can put x on the wrong side. So every patch around
-    // such an F is tried, and of equally close answers the one whose normal
-    // is most nearly along x - F gives the side (right at any edge: the two
-    // normals' dot products with x - F sum to a non-negative number). Where
-    // even that normal is more than 25° off x - F (the corner of a fold,
-    // where several patches meet at sharp angles: a parachute's rim at
-    // Ca ~ 0.5-1), the winding number decides. That is a few percent of the
-    // queries at such a rim, and almost none on a smooth membrane.
+    // lies on an edge or a corner that patches share, x - F lies in the
+    // cone of their normals, and on a sharp fold (a parachute's rim at high
+    // capillary number) the normal of one of them, even the one most nearly
+    // along x - F, can put x on the wrong side: at the rim of a cell
+    // squeezed through a 6 µm capillary, where four patches meet at 69° in
+    // all and two fold back on each other, level set nodes in the vessel
+    // wall landed on the cell's inside that way, and so did nodes 6 µm
+    // behind it, whose closest point then was on an edge. So every patch
+    // around such an F is tried for a closer point, and where the patches
+    // around F disagree the winding number gives the side (side()).
     const Point<2> &xi = best.point.reference;
-    if (std::min({xi[0], xi[1], 1. - xi[0], 1. - xi[1]}) == 0.)
+    if (on_edge(xi[0]) || on_edge(xi[1]))
       {
         const unsigned int i =
           std::find(images.begin(), images.end(), best.x) - images.begin();
         try_patches_near(best.point.point, best.x, tried[i], best);
       }
-    if (best.alignment < 0.9)
-      best.point.signed_distance =
-        (winding_number(best.point.membrane, best.x) > 0.5 ? -1. : 1.) *
-        std::abs(best.point.signed_distance);
+    best.point.signed_distance =
+      side(best) * std::abs(best.point.signed_distance);
     answers.emplace(x, best.point);
     return best.point;
   }

@@ -89,7 +89,8 @@ namespace rbc_ifem
       ClosestPoint point;
       Point<3>     x;
       /// |(x - F) · n| / |x - F|: 1 where x - F is along the normal.
-      double alignment = 0.;
+      double       alignment = 0.;
+      unsigned int patch     = 0; ///< index into patches
     };
 
     /**
@@ -104,9 +105,34 @@ namespace rbc_ifem
                      std::vector<unsigned int> &tried,
                      Candidate                 &best) const;
 
+
     /// The winding number of @p membrane around @p x: 1 inside, 0 outside.
     double
     winding_number(unsigned int membrane, const Point<3> &x) const;
+
+    /**
+     * The side of @p best.x, the point whose closest point on the
+     * membranes @p best found: -1 inside its membrane, +1 outside. From the
+     * normal at the closest point F where F lies inside a patch and x - F
+     * is along its normal; where F lies on an edge or a corner, from the
+     * normals there of all the patches around F if they agree; otherwise
+     * (x - F more than 25° off the normal inside a patch, or the patches
+     * around F disagree: a sharp fold) from the winding number.
+     */
+    double
+    side(const Candidate &best) const;
+
+    /**
+     * Whether the normals at F of all the patches around the edge or
+     * corner F of @p best put @p best.x on the same side; that side in
+     * @p outside.
+     */
+    bool
+    patches_around_agree(const Candidate &best, bool &outside) const;
+
+    /// The outward unit normal of @p patch at @p xi.
+    Tensor<1, 3>
+    normal_at(const Patch &patch, const Point<2> &xi) const;
 
     /// F(ξ) and its two tangents on @p patch.
     void
@@ -124,6 +150,12 @@ namespace rbc_ifem
                         basis; ///< 1-D Lagrange, degree p
     std::vector<double> nodes_1d;
     std::vector<Patch>  patches;
+    /// The patches of membrane m are first_patch[m] + the active cell
+    /// index; its vertex v is first_vertex[m] + v in vertex_patches, the
+    /// patches around each vertex.
+    std::vector<unsigned int>              first_patch;
+    std::vector<unsigned int>              first_vertex;
+    std::vector<std::vector<unsigned int>> vertex_patches;
     /// Sample k: patch sample_patch[k] at reference point sample_xi[k].
     std::vector<Point<3>>     samples;
     std::vector<unsigned int> sample_patch;

@@ -1,8 +1,8 @@
-// mpirun: 2 3 4
+// mpirun: 1 2 3 4
 
 // Periodicity between the end faces of a diffusion mesh whose band was
 // refined more at one end than at the other, partitioned by METIS and by
-// z-order, on 2-4 ranks: match_end_refinement() refines the ends alike and
+// z-order, on 1-4 ranks: match_end_refinement() refines the ends alike and
 // make_end_periodicity_constraints() pairs their DoFs; the constraints close
 // (with DoFTools::make_periodicity_constraints() and the ends left unlike,
 // close() never returned on 3 and 4 ranks: doc/diffusion.md), and after

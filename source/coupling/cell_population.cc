@@ -287,8 +287,14 @@ namespace rbc_ifem
       {
         const std::string file = name + "_" + std::to_string(c) + "_" +
                                  Utilities::int_to_string(counter, 4);
-        cell_membranes[c]->write_vtu(
-          x[c], directory, file, {{"force", forces[c]}}, field_data);
+        const Vector<double> density =
+          cell_membranes[c]->force_densities(x[c], forces[c]);
+        cell_membranes[c]->write_vtu(x[c],
+                                     directory,
+                                     file,
+                                     {{"force", forces[c]},
+                                      {"force_density", density}},
+                                     field_data);
         files.push_back(file + ".vtu");
       }
     return files;

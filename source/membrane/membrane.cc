@@ -470,6 +470,18 @@ namespace rbc_ifem
     return sum_cell_terms(x).mass;
   }
 
+  Vector<double>
+  Membrane::force_densities(const Vector<double> &x,
+                            const Vector<double> &f) const
+  {
+    const std::vector<double> areas = nodal_areas(x);
+    Vector<double>            densities(f.size());
+    for (unsigned int node = 0; node < node_dofs.size(); ++node)
+      for (const types::global_dof_index i : node_dofs[node])
+        densities[i] = f[i] / areas[node];
+    return densities;
+  }
+
   std::vector<Tensor<1, 3>>
   Membrane::nodal_vector_areas(const Vector<double> &x) const
   {

@@ -165,7 +165,8 @@ namespace rbc_ifem
 
     /**
      * Each cell as NAME_C_CCCC.vtu (rank 0's job: call it there), with the
-     * displacement and the last forces, each file carrying @p field_data;
+     * displacement, the last forces (`force`, pN per node) and the same per
+     * unit area (`force_density`, pN/µm²), each file carrying @p field_data;
      * returns the file names.
      */
     std::vector<std::string>

@@ -148,6 +148,15 @@ namespace rbc_ifem
     nodal_areas(const Vector<double> &x) const;
 
     /**
+     * The nodal forces @p f (one entry per DoF) divided by the lumped area
+     * of their node on the surface x (nodal_areas()): a force per unit area
+     * [pN/µm²], the traction the membrane exerts, which unlike the nodal
+     * force does not shrink as the mesh is refined.
+     */
+    Vector<double>
+    force_densities(const Vector<double> &x, const Vector<double> &f) const;
+
+    /**
      * The vector area w_i = ∫ N_i n dA of every node (nodes()) on the
      * surface x: the derivative of the enclosed volume by the node's
      * position, so -p w_i are the nodal forces of a pressure p.

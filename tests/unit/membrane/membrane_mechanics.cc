@@ -15,7 +15,10 @@
 // - the area and volume of the Evans-Fung membrane converge to the exact
 //   values;
 // - under a uniform pressure p the volume energy holds the volume loss to
-//   p/k_V, the value it alone would allow.
+//   p/k_V, the value it alone would allow;
+// - the force density (force per lumped nodal area) of a uniform pressure p
+//   on a sphere is p at every node on every mesh, while the nodal force
+//   shrinks with the elements.
 
 #include <rbc_ifem/geometry/cell_surface.h>
 #include <rbc_ifem/membrane/membrane.h>
@@ -447,6 +450,65 @@ namespace
                          3.);
       }
   }
+  /**
+   * The nodal forces -p w_i of a pressure p on a sphere, divided by the
+   * lumped nodal areas (Membrane::force_densities()): |f_i|/m_i = p up to
+   * the discretisation (second order), on every mesh, where the largest
+   * nodal force falls about fourfold per refinement.
+   */
+  void
+  check_force_density(Checker &check)
+  {
+    const double pressure = 2.;
+    std::cout << "Force per area of a pressure " << pressure
+              << " pN/µm² on a sphere of radius 3 µm, Q1\n";
+    double last_force = 0., last_deviation = 0.;
+    for (unsigned int refinements = 2; refinements <= 4; ++refinements)
+      {
+        Triangulation<2, 3> sphere;
+        GridGenerator::hyper_sphere(sphere, Point<3>(), 3.);
+        sphere.refine_global(refinements);
+        const Membrane        membrane(sphere, with_terms("Skalak", 0, 0, 0));
+        const Vector<double> &x = membrane.reference_positions();
+        const auto            w = membrane.nodal_vector_areas(x);
+        Vector<double>        f(x.size());
+        for (unsigned int i = 0; i < w.size(); ++i)
+          for (unsigned int d = 0; d < 3; ++d)
+            f[membrane.nodes()[i][d]] = -pressure * w[i][d];
+        const Vector<double> density   = membrane.force_densities(x, f);
+        double               deviation = 0., largest_force = 0.;
+        for (const auto &node : membrane.nodes())
+          {
+            Tensor<1, 3> force, traction;
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                force[d]    = f[node[d]];
+                traction[d] = density[node[d]];
+              }
+            deviation =
+              std::max(deviation, std::abs(traction.norm() / pressure - 1.));
+            largest_force = std::max(largest_force, force.norm());
+          }
+        std::cout << "  " << refinements << " refinements: largest |f_i| "
+                  << largest_force << " pN, largest ||f_i|/m_i/p - 1| "
+                  << deviation << '\n';
+        check.at_most("force density / p - 1, " + std::to_string(refinements) +
+                        " refinements",
+                      deviation,
+                      0.04);
+        if (last_force > 0.)
+          {
+            check.at_least("nodal force falls per refinement",
+                           last_force / largest_force,
+                           3.);
+            check.at_least("force density: observed order",
+                           std::log2(last_deviation / deviation),
+                           1.8);
+          }
+        last_force     = largest_force;
+        last_deviation = deviation;
+      }
+  }
 } // namespace
 
 int
@@ -470,5 +532,6 @@ main()
   for (const unsigned int degree : {1u, 2u})
     check_cell_measures(check, degree);
   check_volume_penalty_under_pressure(check);
+  check_force_density(check);
   return check.exit_code();
 }

@@ -1,5 +1,6 @@
 #include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/parameter_names.h>
 #include <rbc_ifem/base/parameter_text.h>
 #include <rbc_ifem/base/parameter_tools.h>
 #include <rbc_ifem/experiments/cell_flow_experiment.h>
@@ -154,10 +155,12 @@ namespace rbc_ifem
     if (!std::filesystem::is_regular_file(filename) || !std::ifstream(filename))
       throw InputError("cannot read the parameter file '" + filename +
                        "': it does not exist or is not a readable file.");
+    const std::string text = read_parameter_file(filename, warnings);
+    check_parameter_names(text, filename, parameter_patterns(prm));
     try
       {
-        std::istringstream text(read_parameter_file(filename, warnings));
-        prm.parse_input(text, filename);
+        std::istringstream lines(text);
+        prm.parse_input(lines, filename);
       }
     catch (const ExceptionBase &e)
       {
@@ -188,8 +191,9 @@ namespace rbc_ifem
     const auto        patterns = parameter_patterns(prm);
     const auto        pattern  = patterns.find(path);
     if (pattern == patterns.end())
-      throw InputError(option + ": there is no parameter '" + path +
-                       "'. Run 'rbc-ifem --print-parameters' for every "
+      throw InputError(option + ": there is no parameter '" + path + "'." +
+                       suggest_parameter(path, patterns) +
+                       " Run 'rbc-ifem --print-parameters' for every "
                        "parameter, as Subsection/Name.");
 
     std::vector<std::string> names = Utilities::split_string_list(path, '/');

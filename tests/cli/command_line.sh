@@ -74,7 +74,9 @@ bad_set() { # expected-words arguments...
   [ -e output/bad ] && fail "--set $*: the run wrote output/bad"
   echo "ok: $* -> $(grep error bad.txt)"
 }
-bad_set "no parameter 'Layout/Number of cels'" --set "Layout/Number of cels=2"
+bad_set "no parameter 'Layout/Number of cels'. Did you mean 'Layout/Number of cells'?" --set "Layout/Number of cels=2"
+bad_set "no parameter 'Number of cells'. Did you mean 'Layout/Number of cells'?" --set "Number of cells=2"
+bad_set "no parameter 'Capillary radius'. An entry 'Capillary radius' is in subsection 'Geometry'." --set "Capillary radius=2"
 bad_set "parameter 'Layout/Number of cells' = '-2' is not allowed: a whole number ≥ 0" --set "Layout/Number of cells=-2"
 bad_set "expected \"Subsection/Name=value\"" --set "Layout/Number of cells"
 bad_set "parameter 'Geometry/Capillary radius' = '0'" --set "Geometry/Capillary radius=0"

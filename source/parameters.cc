@@ -49,4 +49,12 @@ namespace rbc_ifem
                           geometry.capillary_length);
     diffusion.validate();
   }
+
+  std::vector<InputFile>
+  Parameters::input_files() const
+  {
+    if (layout.kind == LayoutKind::file)
+      return {{"Layout/File", layout.file}};
+    return {};
+  }
 } // namespace rbc_ifem

@@ -1,6 +1,7 @@
 #ifndef rbc_ifem_parameters_h
 #define rbc_ifem_parameters_h
 
+#include <rbc_ifem/base/input_files.h>
 #include <rbc_ifem/coupling/parameters.h>
 #include <rbc_ifem/diffusion/parameters.h>
 #include <rbc_ifem/fluid/parameters.h>
@@ -11,6 +12,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <string>
+#include <vector>
 
 namespace rbc_ifem
 {
@@ -54,6 +56,13 @@ namespace rbc_ifem
      */
     void
     validate() const;
+
+    /**
+     * The files the run reads that parameters name: Layout/File when
+     * Layout/Kind = file. A run copies them into its output directory.
+     */
+    std::vector<InputFile>
+    input_files() const;
   };
 } // namespace rbc_ifem
 

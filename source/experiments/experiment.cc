@@ -1,4 +1,5 @@
 #include <rbc_ifem/base/input_error.h>
+#include <rbc_ifem/base/input_files.h>
 #include <rbc_ifem/base/interruption.h>
 #include <rbc_ifem/base/output.h>
 #include <rbc_ifem/base/output_error.h>
@@ -19,7 +20,8 @@ namespace rbc_ifem
     , communicator(context.communicator)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
     , timer(MPI_COMM_SELF, pcout, TimerOutput::never, TimerOutput::wall_times)
-    , parameter_file_text(parameter_text(context.prm))
+    , parameter_file_text(with_input_copies(parameter_text(context.prm),
+                                            context.parameters.input_files()))
     , options(context.options)
     , parameters_file(parameters_file)
   {}
@@ -41,6 +43,10 @@ namespace rbc_ifem
     const auto         write_parameters_file = [&]() {
       write_together(communicator, [&]() {
         write_parameters(parameter_file_text, directory, communicator);
+        copy_input_files(parameters.input_files(),
+                         directory,
+                         parameters.immersed.resume,
+                         communicator);
       });
     };
     if (parameters_file == ParametersFile::before_work)

@@ -1,4 +1,5 @@
 #include <rbc_ifem/base/input_error.h>
+#include <rbc_ifem/base/input_files.h>
 #include <rbc_ifem/base/output.h>
 #include <rbc_ifem/base/parameter_names.h>
 #include <rbc_ifem/base/parameter_text.h>
@@ -173,6 +174,8 @@ namespace rbc_ifem
                          "\nRun 'rbc-ifem --print-parameters' for every "
                          "parameter, its allowed values and its default.");
       }
+    resolve_file_parameters(
+      prm, std::filesystem::path(filename).parent_path().string());
     for (const std::string &change : changes)
       set(change);
     validate();

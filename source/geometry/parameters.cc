@@ -4,6 +4,9 @@
 
 #include <deal.II/base/patterns.h>
 
+#include <filesystem>
+#include <fstream>
+
 namespace rbc_ifem
 {
   void
@@ -240,7 +243,11 @@ namespace rbc_ifem
                   "Minimum gap between them and half of it from the end "
                   "faces, and lie inside the lumen. The layouts experiments "
                   "write every layout they draw in this form "
-                  "(layout_<kind>_<n>_<seed>.csv).",
+                  "(layout_<kind>_<n>_<seed>.csv). A relative path is "
+                  "taken from the folder of this parameter file (from the "
+                  "working directory when given by --set); the run copies "
+                  "the file into its Output directory and its "
+                  "parameters.prm names the copy.",
                   Patterns::FileName());
     prm.leave_subsection();
   }
@@ -256,6 +263,15 @@ namespace rbc_ifem
       throw InputError("Layout/File",
                        "",
                        "Layout/Kind = file needs the CSV file of the cells.");
+    if (kind == LayoutKind::file &&
+        (!std::filesystem::is_regular_file(file) || !std::ifstream(file)))
+      throw InputError(
+        "Layout/File",
+        file,
+        "there is no readable file " +
+          std::filesystem::absolute(file).lexically_normal().string() +
+          ". A relative path in a parameter file is taken from that file's "
+          "folder, one given by --set from the working directory.");
   }
 
   void

@@ -37,11 +37,9 @@ namespace rbc_ifem
         "Output directory",
         output_directory,
         "it must name a directory, new or existing, not a file.");
-    geometry.validate();
     cells.validate();
     layout.validate();
     layout_study.validate();
-    fluid.validate();
     membrane.validate();
     immersed.validate();
     interactions.validate(cells.diameter,

@@ -22,15 +22,4 @@ namespace rbc_ifem
     s << value;
     return s.str();
   }
-
-  void
-  require_positive(const std::string &parameter,
-                   const double       value,
-                   const std::string &unit)
-  {
-    if (!(value > 0.))
-      throw InputError(parameter,
-                       to_text(value),
-                       "it must be > 0" + unit + ".");
-  }
 } // namespace rbc_ifem

@@ -26,7 +26,7 @@ namespace rbc_ifem
                   "Δ of the cell-cell repulsion [µm]: no force beyond it. "
                   "Keep it at least the membrane point spacing (the run "
                   "warns otherwise) and below the cell diameter.",
-                  Patterns::Double(0.));
+                  GreaterThan());
     add_parameter(prm,
                   "Aggregation",
                   aggregation,
@@ -49,7 +49,7 @@ namespace rbc_ifem
                   aggregation_width,
                   "β, the inverse width of the Morse well [1/µm] (3.84 in "
                   "Liu & Liu 2006 and Zhang et al. 2008).",
-                  Patterns::Double(0.));
+                  GreaterThan());
     add_parameter(prm,
                   "Aggregation distance",
                   aggregation_distance,
@@ -63,7 +63,7 @@ namespace rbc_ifem
                   "The gap beyond which the Morse potential is zero [µm]; "
                   "the potential is shifted so that it and its force are "
                   "continuous there. Must exceed Aggregation distance.",
-                  Patterns::Double(0.));
+                  GreaterThan());
     add_parameter(prm,
                   "Wall pressure",
                   wall_pressure,
@@ -77,7 +77,7 @@ namespace rbc_ifem
                   wall_range,
                   "Δ of the wall repulsion [µm]: no force farther from the "
                   "wall. Below the capillary radius.",
-                  Patterns::Double(0.));
+                  GreaterThan());
     prm.leave_subsection();
   }
 
@@ -90,7 +90,6 @@ namespace rbc_ifem
                                     const double       range,
                                     const double       limit,
                                     const std::string &what) {
-      require_positive(parameter, range);
       if (!(range < limit))
         throw InputError(parameter,
                          to_text(range),
@@ -112,9 +111,6 @@ namespace rbc_ifem
                         aggregation_cutoff,
                         cell_limit,
                         cell_what);
-        require_positive("Cell interactions/Aggregation width",
-                         aggregation_width,
-                         " 1/µm");
         if (!(aggregation_cutoff > aggregation_distance))
           throw InputError("Cell interactions/Aggregation cutoff",
                            to_text(aggregation_cutoff),

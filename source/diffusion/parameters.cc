@@ -60,7 +60,7 @@ namespace rbc_ifem
                   alveolar_pressure,
                   "CO partial pressure P_A on the outer surface of the gas "
                   "layer [Torr]. DM = CO flow / P_A does not depend on it.",
-                  Patterns::Double(0.));
+                  GreaterThan());
     const auto add_material = [&](const std::string &name,
                                   double            &diffusivity,
                                   double            &solubility,
@@ -71,14 +71,14 @@ namespace rbc_ifem
                     diffusivity,
                     "CO diffusion coefficient D in the " + where +
                       " [µm²/s] (the paper's Table 2).",
-                    Patterns::Double(0.));
+                    GreaterThan());
       add_parameter(prm,
                     name + " solubility",
                     solubility,
                     "CO solubility α in the " + where +
                       " [Torr⁻¹: volume of CO (STPD) per volume per Torr] (" +
                       solubility_source + ").",
-                    Patterns::Double(0.));
+                    GreaterThan());
     };
     add_material("Plasma",
                  plasma_diffusivity,
@@ -128,7 +128,7 @@ namespace rbc_ifem
                   "membrane constraint. It does not change the solution, "
                   "only the solver: larger γ makes the multiplier block "
                   "easier and the P block harder. See doc/diffusion.md.",
-                  Patterns::Double(0.));
+                  GreaterThan());
     add_parameter(prm,
                   "Nitsche penalty",
                   nitsche_penalty,
@@ -136,7 +136,7 @@ namespace rbc_ifem
                   "this times k(k+1) αD/h (k the degree, h the cell size); "
                   "dimensionless. Too small (below about 1) loses "
                   "coercivity; larger values only cost accuracy slowly.",
-                  Patterns::Double(0.));
+                  GreaterThan());
     add_parameter(prm,
                   "Ghost penalty",
                   ghost_penalty,
@@ -150,7 +150,7 @@ namespace rbc_ifem
                   "more than the limit with 0.05, 0.14% more with 0.01. "
                   "Below about 0.005 CG needs more iterations "
                   "(doc/diffusion.md).",
-                  Patterns::Double(0.));
+                  GreaterThan());
   }
 
   void
@@ -164,7 +164,7 @@ namespace rbc_ifem
                   "factor from its first value in the solve. (Fluid/Linear "
                   "solver tolerance is relative to the largest residual of "
                   "the whole run instead.)",
-                  Patterns::Double(0.));
+                  GreaterThan());
     add_parameter(prm,
                   "Max linear iterations",
                   max_linear_iterations,
@@ -196,7 +196,7 @@ namespace rbc_ifem
                   "small gases diffuse in the cells' concentrated "
                   "hemoglobin (33 g/dL) at roughly a third of their speed "
                   "in plasma; doc/physiology.md shows how DL depends on it.",
-                  Patterns::Double(0.));
+                  GreaterThan());
     add_parameter(prm,
                   "Cytoplasm solubility",
                   cytoplasm_solubility,
@@ -204,7 +204,7 @@ namespace rbc_ifem
                   "[Torr⁻¹], the plasma's: the Bunsen coefficients of CO "
                   "at 37 °C in saline and in whole blood, 0.0180 and "
                   "0.0189, differ by 5% (doc/physiology.md).",
-                  Patterns::Double(0.));
+                  GreaterThan());
     add_selection(
       prm,
       "Theta model",
@@ -225,7 +225,7 @@ namespace rbc_ifem
                   "Torr⁻¹ per mL of blood]. The default, 1/0.82, is the "
                   "thin-film measurements' (Hughes & van der Lee, Eur. "
                   "Respir. J. 41 (2013) 453, Table 4).",
-                  Patterns::Double(0.));
+                  GreaterThan());
     add_parameter(prm,
                   "Oxygen pressure",
                   oxygen_pressure,
@@ -240,30 +240,12 @@ namespace rbc_ifem
                   "cytoplasm binds θ/H per mL of cells. The formulas' "
                   "14.6 g/dL of hemoglobin is H = 0.44 at the normal 33 "
                   "g/dL inside the cells.",
-                  Patterns::Double(0., 1.));
+                  GreaterThan(0., 1.));
   }
 
   void
   DiffusionParameters::validate() const
   {
-    const std::pair<const char *, double> positive[] = {
-      {"Diffusion/Alveolar pressure", alveolar_pressure},
-      {"Diffusion/Plasma diffusivity", plasma_diffusivity},
-      {"Diffusion/Plasma solubility", plasma_solubility},
-      {"Diffusion/Wall diffusivity", wall_diffusivity},
-      {"Diffusion/Wall solubility", wall_solubility},
-      {"Diffusion/Gas diffusivity", gas_diffusivity},
-      {"Diffusion/Gas solubility", gas_solubility},
-      {"Diffusion/Augmentation", augmentation},
-      {"Diffusion/Nitsche penalty", nitsche_penalty},
-      {"Diffusion/Ghost penalty", ghost_penalty},
-      {"Diffusion/Linear solver tolerance", linear_tolerance},
-      {"Diffusion/Cytoplasm diffusivity", cytoplasm_diffusivity},
-      {"Diffusion/Cytoplasm solubility", cytoplasm_solubility},
-      {"Diffusion/Theta", theta},
-      {"Diffusion/Hematocrit", hematocrit}};
-    for (const auto &[name, value] : positive)
-      require_positive(name, value, "");
     if (uptake == CellUptake::reaction && method != DiffusionMethod::cut_cell)
       throw InputError("Diffusion/Uptake",
                        "reaction",

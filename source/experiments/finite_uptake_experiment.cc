@@ -36,7 +36,7 @@ namespace rbc_ifem
                   "Experiment 'finite uptake': θ_CO values given directly "
                   "[mL CO min⁻¹ Torr⁻¹ per mL of blood], computed after the "
                   "oxygen pressures'; may be empty.",
-                  Patterns::List(Patterns::Double(0.), 0));
+                  Patterns::List(GreaterThan(), 0));
     prm.leave_subsection();
   }
 
@@ -56,8 +56,6 @@ namespace rbc_ifem
                          "each entry is a formula θ(PO₂): Roughton-Forster "
                          "1957, Forster 1987 or Guenard 2016 (θ given "
                          "directly go in Finite uptake/Thetas).");
-    for (const double theta : thetas)
-      require_positive("Finite uptake/Thetas", theta, "");
     if (oxygen_pressures.empty() && thetas.empty())
       throw InputError("Finite uptake/Thetas",
                        "",

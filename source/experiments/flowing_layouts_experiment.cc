@@ -29,7 +29,7 @@ namespace rbc_ifem
                   "the mean of its DM solves in the last Steady window of "
                   "the run [s]; flowing_layouts_summary.csv gives their "
                   "spread (max - min) / mean, which says how steady it is.",
-                  Patterns::Double(0.));
+                  GreaterThan());
     prm.leave_subsection();
   }
 
@@ -50,10 +50,10 @@ namespace rbc_ifem
                        "duration: give the step in seconds (the explicit-"
                        "coupling estimate of a flow run is a guide).");
     const double duration = parameters.time.n_steps * parameters.time.time_step;
-    if (!(steady_window > 0. && steady_window < duration))
+    if (!(steady_window < duration))
       throw InputError("Flowing layouts/Steady window",
                        to_text(steady_window),
-                       "it must be > 0 and shorter than the run, Time/Number "
+                       "it must be shorter than the run, Time/Number "
                        "of steps x Time/Time step = " +
                          to_text(duration) + " s.");
     if (!parameters.immersed.pushing_forces.empty())

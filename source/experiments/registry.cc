@@ -158,6 +158,12 @@ namespace rbc_ifem
                        "': it does not exist or is not a readable file.");
     const std::string text = read_parameter_file(filename, warnings);
     check_parameter_names(text, filename, parameter_patterns(prm));
+    // Each value against its pattern first: deal.II's own message names
+    // neither the subsection nor what is allowed in words.
+    for (const ParameterEntry &entry : parameter_entries(text))
+      set_value(entry.path,
+                entry.value,
+                filename + ", line " + std::to_string(entry.line));
     try
       {
         std::istringstream lines(text);
@@ -192,13 +198,19 @@ namespace rbc_ifem
     const std::string path     = Utilities::trim(change.substr(0, equals));
     const std::string value    = Utilities::trim(change.substr(equals + 1));
     const auto        patterns = parameter_patterns(prm);
-    const auto        pattern  = patterns.find(path);
-    if (pattern == patterns.end())
+    if (patterns.count(path) == 0)
       throw InputError(option + ": there is no parameter '" + path + "'." +
                        suggest_parameter(path, patterns) +
                        " Run 'rbc-ifem --print-parameters' for every "
                        "parameter, as Subsection/Name.");
+    set_value(path, value, "from " + option);
+  }
 
+  void
+  RunParameters::set_value(const std::string &path,
+                           const std::string &value,
+                           const std::string &origin)
+  {
     std::vector<std::string> names = Utilities::split_string_list(path, '/');
     const std::string        entry = names.back();
     names.pop_back();
@@ -219,8 +231,8 @@ namespace rbc_ifem
     if (!matches)
       throw InputError(path,
                        value,
-                       allowed_values(pattern->second) + " (from " + option +
-                         ").");
+                       allowed_values(parameter_patterns(prm).at(path)) + " (" +
+                         origin + ").");
   }
 
   void

@@ -28,7 +28,7 @@ namespace rbc_ifem
                   "Experiment 'shear': the rate γ̇ of the simple shear "
                   "v = (γ̇ y, 0, 0) the box walls impose [1/s]. Results "
                   "depend on it only through the capillary number.",
-                  Patterns::Double(0.));
+                  GreaterThan());
     add_parameter(prm,
                   "Capillary numbers",
                   capillary_numbers,
@@ -37,7 +37,7 @@ namespace rbc_ifem
                   "modulus: every modulus of subsection Membrane is "
                   "scaled by the same factor to give this G, so their "
                   "ratios are kept.",
-                  Patterns::List(Patterns::Double(0.), 1));
+                  Patterns::List(GreaterThan(), 1));
     add_parameter(prm,
                   "Box size",
                   box,
@@ -46,12 +46,12 @@ namespace rbc_ifem
                   "(z, walls moving with the shear) of the box, centred "
                   "on the capsule [µm]. Each must be a multiple of "
                   "Cells/Diameter, the coarse mesh's cell size.",
-                  Patterns::List(Patterns::Double(0.), 3, 3, ","));
+                  Patterns::List(GreaterThan(), 3, 3, ","));
     add_parameter(prm,
                   "Total strain",
                   strain,
                   "Each run lasts until γ̇ t reaches this.",
-                  Patterns::Double(0.));
+                  GreaterThan());
     add_parameter(prm,
                   "Averaging strain",
                   averaging_strain,
@@ -61,20 +61,20 @@ namespace rbc_ifem
                   "of a capsule at small Ca wrinkles late in a run and D "
                   "creeps up (doc/validation.md); the window finds the "
                   "plateau before that.",
-                  Patterns::Double(0.));
+                  GreaterThan());
     add_parameter(prm,
                   "Output strain interval",
                   output_strain,
                   "A shear.csv row, a cells.csv row and the VTU files "
                   "every γ̇ t of this length.",
-                  Patterns::Double(0.));
+                  GreaterThan());
     add_parameter(prm,
                   "Time step fraction",
                   time_step_fraction,
                   "Δt of each run as a fraction of its explicit-coupling "
                   "time step limit (doc/ifem.md), which scales with 1/G: "
                   "small Ca take more steps. Time/Time step is not used.",
-                  Patterns::Double(0., 1.));
+                  GreaterThan(0., 1.));
     prm.leave_subsection();
   }
 
@@ -82,16 +82,10 @@ namespace rbc_ifem
   ShearParameters::validate(const Parameters &parameters) const
   {
     const CellParameters &cells = parameters.cells;
-    require_positive("Shear/Shear rate", shear_rate, " 1/s");
-    require_positive("Shear/Total strain", strain, "");
-    require_positive("Shear/Output strain interval", output_strain, "");
-    require_positive("Shear/Time step fraction", time_step_fraction, "");
-    for (const double ca : capillary_numbers)
-      require_positive("Shear/Capillary numbers", ca, "");
-    if (!(averaging_strain > 0. && averaging_strain < strain))
+    if (!(averaging_strain < strain))
       throw InputError("Shear/Averaging strain",
                        to_text(averaging_strain),
-                       "it must be > 0 and below Shear/Total strain = " +
+                       "it must be below Shear/Total strain = " +
                          to_text(strain) + ".");
     const char *names[] = {"length", "height", "width"};
     for (unsigned int d = 0; d < 3; ++d)

@@ -39,13 +39,13 @@ namespace rbc_ifem
                   "two ends of a diameter. 0.025 is a contact region about "
                   "2 µm across, as Dao et al. (2003) assume for the beads "
                   "of the experiments.",
-                  Patterns::Double(0., 0.25));
+                  GreaterThan(0., 0.25));
     add_parameter(prm,
                   "Residual tolerance",
                   tolerance,
                   "An equilibrium is found when no node's force "
                   "imbalance exceeds this [pN].",
-                  Patterns::Double(0.));
+                  GreaterThan());
     add_parameter(prm,
                   "Max iterations",
                   max_iterations,
@@ -53,16 +53,6 @@ namespace rbc_ifem
                   "run stops.",
                   Patterns::Integer(1));
     prm.leave_subsection();
-  }
-
-  void
-  StretchingParameters::validate(const Parameters &) const
-  {
-    if (!(attached_fraction > 0.))
-      throw InputError("Stretching/Attached area fraction",
-                       to_text(attached_fraction),
-                       "it must be > 0: the beads must hold some membrane.");
-    require_positive("Stretching/Residual tolerance", tolerance, " pN");
   }
 
   StretchingExperiment::StretchingExperiment(

@@ -31,7 +31,7 @@ namespace rbc_ifem
                   viscosity,
                   "Dynamic viscosity μ of plasma (and of the cytoplasm: "
                   "viscosity ratio 1) [pN s/µm²]; 1.2e-3 is 1.2 mPa s.",
-                  Patterns::Double(0.));
+                  GreaterThan());
     add_parameter(prm,
                   "Density",
                   density,
@@ -81,11 +81,5 @@ namespace rbc_ifem
                   "converged after this many iterations.",
                   Patterns::Integer(1));
     prm.leave_subsection();
-  }
-
-  void
-  FluidParameters::validate() const
-  {
-    require_positive("Fluid/Viscosity", viscosity, " pN s/µm²");
   }
 } // namespace rbc_ifem

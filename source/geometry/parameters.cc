@@ -18,26 +18,26 @@ namespace rbc_ifem
                   capillary_radius,
                   "Radius of the capillary lumen [µm]. The segment is the "
                   "cylinder of this radius along the x axis.",
-                  Patterns::Double(0.));
+                  GreaterThan());
     add_parameter(prm,
                   "Capillary length",
                   capillary_length,
                   "Length of the capillary segment, from x = 0 to "
                   "x = length [µm]. 20 µm holds 7 cells of 7.5 µm, as in "
                   "the paper.",
-                  Patterns::Double(0.));
+                  GreaterThan());
     add_parameter(prm,
                   "Wall thickness",
                   wall_thickness,
                   "Thickness of the vessel wall (tissue) around the "
                   "lumen [µm].",
-                  Patterns::Double(0.));
+                  GreaterThan());
     add_parameter(prm,
                   "Gas layer thickness",
                   gas_layer_thickness,
                   "Thickness of the alveolar gas layer outside the wall "
                   "[µm]; P = P_A holds on its outer surface.",
-                  Patterns::Double(0.));
+                  GreaterThan());
     add_parameter(prm,
                   "Periodic",
                   periodic,
@@ -57,15 +57,6 @@ namespace rbc_ifem
   GeometryParameters::period() const
   {
     return periodic ? std::optional<double>(capillary_length) : std::nullopt;
-  }
-
-  void
-  GeometryParameters::validate() const
-  {
-    require_positive("Geometry/Capillary radius", capillary_radius);
-    require_positive("Geometry/Capillary length", capillary_length);
-    require_positive("Geometry/Wall thickness", wall_thickness);
-    require_positive("Geometry/Gas layer thickness", gas_layer_thickness);
   }
 
   void
@@ -148,7 +139,7 @@ namespace rbc_ifem
                   "Diameter 2R of the Evans-Fung biconcave reference "
                   "shape [µm]; its thickness scales with it. Must be "
                   "smaller than the capillary diameter.",
-                  Patterns::Double(0.));
+                  GreaterThan());
     add_parameter(prm,
                   "Surface refinements",
                   surface_refinements,
@@ -178,7 +169,6 @@ namespace rbc_ifem
       throw InputError("Cells/Axis",
                        Patterns::Tools::to_string(axis),
                        "a direction must be nonzero.");
-    require_positive("Cells/Diameter", diameter);
   }
 
   const SelectionNames<LayoutKind> &
@@ -226,7 +216,7 @@ namespace rbc_ifem
                   "Smallest distance between the surfaces of two "
                   "neighbouring cells [µm]; cells keep half of it from the "
                   "segment's end faces.",
-                  Patterns::Double(0.));
+                  GreaterThan());
     add_parameter(prm,
                   "Cluster position",
                   cluster_position,
@@ -255,10 +245,6 @@ namespace rbc_ifem
   void
   LayoutParameters::validate() const
   {
-    if (!(minimum_gap > 0.))
-      throw InputError("Layout/Minimum gap",
-                       to_text(minimum_gap),
-                       "it must be > 0 µm: cells must not touch.");
     if (kind == LayoutKind::file && file.empty())
       throw InputError("Layout/File",
                        "",

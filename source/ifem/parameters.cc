@@ -165,7 +165,7 @@ namespace rbc_ifem
                   "farther than this fraction of the fluid mesh size in "
                   "one step (the coupling is then unstable, or the step "
                   "too long to be accurate: reduce Time/Time step).",
-                  Patterns::Double(0.));
+                  GreaterThan());
     add_parameter(prm,
                   "Maximum volume change",
                   max_volume_change,
@@ -175,7 +175,7 @@ namespace rbc_ifem
                   "1%), and so it does if a cell's volume oscillates from "
                   "step to step with a growing amplitude (6 steps in a "
                   "row, each change above 1e-4): an unstable coupling.",
-                  Patterns::Double(0.));
+                  GreaterThan());
     add_parameter(prm,
                   "Tether stiffness",
                   tether_stiffness,
@@ -239,11 +239,5 @@ namespace rbc_ifem
                          to_text(tether_stiffness) +
                          " pN/µm) need a frame at rest: set Follow cells = "
                          "false.");
-    require_positive("Immersed cells/Maximum step displacement",
-                     max_step_displacement,
-                     " (a fraction of the fluid mesh size)");
-    require_positive("Immersed cells/Maximum volume change",
-                     max_volume_change,
-                     " (a fraction of the reference volume)");
   }
 } // namespace rbc_ifem

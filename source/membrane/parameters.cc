@@ -25,7 +25,7 @@ namespace rbc_ifem
                   "In-plane shear modulus G [pN/µm]; 5.5 pN/µm is the "
                   "value optical-tweezers experiments give (Mills et al. "
                   "2004: 5.3-7.3).",
-                  Patterns::Double(0.));
+                  GreaterThan());
     add_parameter(prm,
                   "Area dilation modulus",
                   area_dilation_modulus,
@@ -73,7 +73,6 @@ namespace rbc_ifem
   void
   MembraneParameters::validate() const
   {
-    require_positive("Membrane/Shear modulus", shear_modulus, " pN/µm");
     make_elastic_law(law, shear_modulus, area_dilation_modulus);
   }
 } // namespace rbc_ifem

@@ -30,16 +30,6 @@ namespace rbc_ifem
   /// @p value as a message shows it (six significant digits).
   std::string
   to_text(const double value);
-
-  /**
-   * Throw an InputError naming @p parameter unless @p value > 0 (in @p unit,
-   * for the message): thicknesses and lengths of zero make no mesh, rates
-   * and strains of zero no run.
-   */
-  void
-  require_positive(const std::string &parameter,
-                   const double       value,
-                   const std::string &unit = " µm");
 } // namespace rbc_ifem
 
 #endif

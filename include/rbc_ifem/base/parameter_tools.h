@@ -54,6 +54,33 @@ namespace rbc_ifem
     clone() const override;
   };
 
+  /**
+   * The pattern of a number > @p lower, and ≤ @p upper if given: for a
+   * parameter where the bound itself means nothing (a length or a modulus
+   * of 0). deal.II's Patterns::Double includes its bounds; this keeps what
+   * the allowed text says ("a number > 0") the same as what the program
+   * accepts.
+   */
+  class GreaterThan : public Patterns::PatternBase
+  {
+  public:
+    explicit GreaterThan(
+      const double lower = 0.,
+      const double upper = Patterns::Double::max_double_value);
+
+    bool
+    match(const std::string &text) const override;
+
+    std::string
+    description(const OutputStyle style = Machine) const override;
+
+    std::unique_ptr<Patterns::PatternBase>
+    clone() const override;
+
+  private:
+    double lower, upper;
+  };
+
   /// "a|b|c" from @p names.
   inline std::string
   join_names(const std::vector<std::string> &names)

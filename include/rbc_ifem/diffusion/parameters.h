@@ -109,8 +109,8 @@ namespace rbc_ifem
     /// The entries of the reaction inside the cells (Uptake and after).
     void
     add_reaction_parameters(ParameterHandler &prm);
-    /// Throws InputError unless every coefficient and tolerance is > 0, the
-    /// hematocrit is in (0, 1] and the reaction has cut cells.
+    /// Throws InputError unless the reaction has cut cells (the patterns
+    /// hold every coefficient and tolerance > 0).
     void
     validate() const;
   };

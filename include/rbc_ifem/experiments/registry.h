@@ -118,6 +118,16 @@ namespace rbc_ifem
     void
     set(const std::string &change);
 
+    /**
+     * Set the declared entry @p path ("Subsection/.../Name") to @p value,
+     * or throw InputError naming the parameter, the value, what is allowed
+     * and @p origin (where the value comes from).
+     */
+    void
+    set_value(const std::string &path,
+              const std::string &value,
+              const std::string &origin);
+
     /// The index in experiment_types() of the one Experiment names.
     unsigned int
     chosen() const;

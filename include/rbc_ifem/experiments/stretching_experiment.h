@@ -22,10 +22,6 @@ namespace rbc_ifem
 
     void
     add_parameters(ParameterHandler &prm) override;
-    /// Throws InputError unless the beads hold some membrane and the
-    /// tolerance is positive.
-    void
-    validate(const Parameters &parameters) const override;
   };
 
   /**

@@ -37,9 +37,6 @@ namespace rbc_ifem
 
     void
     add_parameters(ParameterHandler &prm);
-    /// Throws InputError unless Viscosity > 0.
-    void
-    validate() const;
   };
 } // namespace rbc_ifem
 

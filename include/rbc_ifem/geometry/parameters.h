@@ -38,9 +38,6 @@ namespace rbc_ifem
 
     void
     add_parameters(ParameterHandler &prm);
-    /// Throws InputError unless every length is positive.
-    void
-    validate() const;
   };
 
   /// Refinement of the two volume meshes (subsection "Mesh").
@@ -79,7 +76,7 @@ namespace rbc_ifem
 
     void
     add_parameters(ParameterHandler &prm);
-    /// Throws InputError unless the axis is a direction and Diameter > 0.
+    /// Throws InputError unless the axis is a direction.
     void
     validate() const;
   };

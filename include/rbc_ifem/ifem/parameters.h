@@ -100,8 +100,7 @@ namespace rbc_ifem
     /// displacement, Tether stiffness, Squeeze into lumen, Pushing forces.
     void
     add_force_parameters(ParameterHandler &prm);
-    /// Throws InputError for held cells in a moving frame, or a zero
-    /// Maximum step displacement.
+    /// Throws InputError for held cells in a moving frame.
     void
     validate() const;
   };

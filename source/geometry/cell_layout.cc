@@ -61,6 +61,45 @@ namespace rbc_ifem
           }
       return samples;
     }
+
+    /**
+     * "" if cells @p a and @p b of @p shape keep @p gap between them, else
+     * " overlap" or " are D µm apart": the distance between dense samples
+     * of their exact surfaces (@p a_samples, also as the r-tree @p a_tree,
+     * and @p b_samples), an overlap if a sample of one lies inside the
+     * other.
+     */
+    template <typename Tree>
+    std::string
+    cells_apart(const EvansFungShape        &shape,
+                const double                 gap,
+                const CellPlacement         &a,
+                const Tree                  &a_tree,
+                const std::vector<Point<3>> &a_samples,
+                const CellPlacement         &b,
+                const std::vector<Point<3>> &b_samples)
+    {
+      namespace bgi = boost::geometry::index;
+      // Cells lie inside the ball of radius R about their centre.
+      if (a.center.distance(b.center) >= 2. * shape.radius() + gap)
+        return "";
+      double closest = std::numeric_limits<double>::infinity();
+      bool   overlap = false;
+      for (const Point<3> &x : b_samples)
+        {
+          for (const Point<3> &nearest :
+               a_tree | bgi::adaptors::queried(bgi::nearest(x, 1)))
+            closest = std::min(closest, x.distance(nearest));
+          overlap = overlap || shape.contains(a, x);
+        }
+      for (const Point<3> &x : a_samples)
+        overlap = overlap || shape.contains(b, x);
+      if (overlap)
+        return " overlap";
+      if (closest < gap)
+        return " are " + format(closest) + " µm apart";
+      return "";
+    }
   } // namespace
 
   CellLayout::CellLayout(const LayoutParameters   &layout,
@@ -320,67 +359,92 @@ namespace rbc_ifem
   CellLayout::check_file_cells(const EvansFungShape            &shape,
                                const std::vector<unsigned int> &lines) const
   {
-    const double gap       = layout.minimum_gap;
-    const double length    = geometry.capillary_length;
-    const auto   cell_text = [&](const unsigned int c) {
+    const auto cell_text = [&](const unsigned int c) {
       return "cell " + std::to_string(c) + " (line " +
              std::to_string(lines[c]) + ")";
     };
-    const auto fail = [&](const std::string &why) {
-      throw InputError("Layout/File", layout.file, why);
-    };
-    const Tensor<1, 3> e_x{{1., 0., 0.}};
     for (unsigned int c = 0; c < cells.size(); ++c)
-      {
-        const double reach = shape.extent(cells[c], e_x);
-        const double from  = cells[c].center[0] - reach,
-                     to    = cells[c].center[0] + reach;
-        if (from < 0.5 * gap - 1e-12 * length ||
-            to > length - 0.5 * gap + 1e-12 * length)
-          fail(
-            cell_text(c) + " spans x = " + format(from) + " to " + format(to) +
-            " µm; cells keep half of Layout/Minimum gap = " + format(gap) +
-            " µm from the end faces x = 0 and x = " + format(length) + " µm.");
-        const double radius = shape.farthest_from_axis(cells[c]);
-        if (radius >= geometry.capillary_radius)
-          fail(cell_text(c) + " reaches " + format(radius) +
-               " µm from the axis, outside the lumen of Geometry/Capillary "
-               "radius = " +
-               format(geometry.capillary_radius) + " µm.");
-      }
+      check_file_cell_in_segment(shape, cell_text(c), cells[c]);
 
-    namespace bgi = boost::geometry::index;
     std::vector<std::vector<Point<3>>> samples;
     for (const CellPlacement &cell : cells)
       samples.push_back(surface_samples(shape, cell));
+    const double period = geometry.periodic ? geometry.capillary_length : 0.;
     for (unsigned int i = 0; i < cells.size(); ++i)
       {
         const auto tree = pack_rtree(samples[i]);
         for (unsigned int j = i + 1; j < cells.size(); ++j)
           {
-            // Cells lie inside the ball of radius R about their centre.
-            if (cells[i].center.distance(cells[j].center) >=
-                2. * shape.radius() + gap)
-              continue;
-            double closest = std::numeric_limits<double>::infinity();
-            bool   overlap = false;
-            for (const Point<3> &x : samples[j])
-              {
-                for (const Point<3> &nearest :
-                     tree | bgi::adaptors::queried(bgi::nearest(x, 1)))
-                  closest = std::min(closest, x.distance(nearest));
-                overlap = overlap || shape.contains(cells[i], x);
-              }
-            for (const Point<3> &x : samples[i])
-              overlap = overlap || shape.contains(cells[j], x);
-            if (overlap || closest < gap)
-              fail(cell_text(i) + " and " + cell_text(j) +
-                   (overlap ? " overlap" :
-                              " are " + format(closest) + " µm apart") +
-                   "; cells keep Layout/Minimum gap = " + format(gap) +
-                   " µm between them.");
+            // In a periodic segment, cell j's image nearest to cell i.
+            const double shift =
+              period > 0. ?
+                period * std::round((cells[i].center[0] - cells[j].center[0]) /
+                                    period) :
+                0.;
+            CellPlacement image = cells[j];
+            image.center[0] += shift;
+            std::vector<Point<3>> image_samples = samples[j];
+            for (Point<3> &x : image_samples)
+              x[0] += shift;
+            const std::string apart = cells_apart(shape,
+                                                  layout.minimum_gap,
+                                                  cells[i],
+                                                  tree,
+                                                  samples[i],
+                                                  image,
+                                                  image_samples);
+            if (!apart.empty())
+              throw InputError("Layout/File",
+                               layout.file,
+                               cell_text(i) + " and " + cell_text(j) + apart +
+                                 (shift != 0. ? " across the periodic end" :
+                                                "") +
+                                 "; cells keep Layout/Minimum gap = " +
+                                 format(layout.minimum_gap) +
+                                 " µm between them.");
           }
       }
+  }
+
+  void
+  CellLayout::check_file_cell_in_segment(const EvansFungShape &shape,
+                                         const std::string    &cell_text,
+                                         const CellPlacement  &cell) const
+  {
+    const double gap    = layout.minimum_gap;
+    const double length = geometry.capillary_length;
+    const auto   fail   = [&](const std::string &why) {
+      throw InputError("Layout/File", layout.file, cell_text + why);
+    };
+    const double reach = shape.extent(cell, Tensor<1, 3>({1., 0., 0.}));
+    const double from = cell.center[0] - reach, to = cell.center[0] + reach;
+    if (geometry.periodic)
+      {
+        // A cell may reach across an end: it lies on both sides of it.
+        if (cell.center[0] < 0. || cell.center[0] >= length)
+          fail(" has its centre at x = " + format(cell.center[0]) +
+               " µm; in the periodic segment (Geometry/Periodic) a centre "
+               "lies in 0 <= x < Geometry/Capillary length = " +
+               format(length) + " µm.");
+        if (to - from + gap > length)
+          fail(" spans " + format(to - from) +
+               " µm along x; with Layout/Minimum gap = " + format(gap) +
+               " µm to its own image it must be shorter than the periodic "
+               "segment, " +
+               format(length) + " µm.");
+      }
+    else if (from < 0.5 * gap - 1e-12 * length ||
+             to > length - 0.5 * gap + 1e-12 * length)
+      fail(" spans x = " + format(from) + " to " + format(to) +
+           " µm; cells keep half of Layout/Minimum gap = " + format(gap) +
+           " µm from the end faces x = 0 and x = " + format(length) +
+           " µm (Geometry/Periodic = true lets them cross the ends).");
+    const double radius = shape.farthest_from_axis(cell);
+    if (radius >= geometry.capillary_radius)
+      fail(" reaches " + format(radius) +
+           " µm from the axis, outside the lumen of Geometry/Capillary "
+           "radius = " +
+           format(geometry.capillary_radius) + " µm.");
   }
 
   CellLayout

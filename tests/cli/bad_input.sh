@@ -16,8 +16,8 @@ touch clash  # a file where a test asks for an output directory
 if [ "$prm" = MISSING ]; then
   input=does-not-exist.prm
 else
-  cp "$prm" input.prm
-  input=input.prm
+  # Where it is: files it names (a layout) are found beside it.
+  input=$prm
 fi
 
 "$exe" "$input" >stdout.txt 2>stderr.txt

@@ -2,9 +2,10 @@
 # Usage: translated_run.sh [-n RANKS -m MPIEXEC] RBC_IFEM PRM SHIFT NUMDIFF [DM_TOLERANCE]
 #
 # Runs a flowing experiment of a periodic segment twice: as PRM says, and
-# with Layout/Cluster position changed so that the cells start SHIFT µm
-# further along x (set in PRM as "Cluster position = A" and written by the
-# test as A + SHIFT/L). In a periodic segment whose meshes repeat with the
+# with the cells starting SHIFT µm further along x: Layout/Cluster position
+# changed (set in PRM as "Cluster position = A" and written by the test as
+# A + SHIFT/L), or with Layout/Kind = file every x of the layout file (named
+# relative to PRM's folder) moved by SHIFT. In a periodic segment whose meshes repeat with the
 # shift, the two runs are the same run translated: cells.csv must agree in
 # every column but the positions along x, which must differ by SHIFT (to
 # 1e-6 µm), and
@@ -29,6 +30,15 @@ position=$(sed -n 's/^ *set Cluster position *= *//p' "$prm")
 moved=$(awk -v p="$position" -v s="$shift_x" -v l="${length:-20}" 'BEGIN { printf "%.12g", p + s / l }')
 sed -e "s/^\( *set Cluster position *=\).*/\1 $moved/" -e "s/^\(set Output directory *=\).*/\1 moved/" "$prm" >moved.prm
 sed -e "s/^\(set Output directory *=\).*/\1 first/" "$prm" >first.prm
+layout=$(sed -n 's/^ *set File *= *//p' "$prm")
+if [ -n "$layout" ]; then
+  # Both runs read their layout from here: the first as given, the moved one
+  # with x + SHIFT.
+  cp "$(dirname "$prm")/$layout" first_layout.csv
+  awk -F, -v OFS=, -v s="$shift_x" 'NR > 1 { $1 = $1 + s } { print }' first_layout.csv >moved_layout.csv
+  sed -i "s|^\( *set File *=\).*|\1 $PWD/first_layout.csv|" first.prm
+  sed -i "s|^\( *set File *=\).*|\1 $PWD/moved_layout.csv|" moved.prm
+fi
 
 failed=0
 for run in first moved; do

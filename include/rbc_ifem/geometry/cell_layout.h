@@ -83,16 +83,28 @@ namespace rbc_ifem
     place_from_file(const EvansFungShape &shape);
     /**
      * Throw InputError, naming Layout/File, the line and the cell, unless
-     * every cell keeps half of Minimum gap from the end faces (its exact
-     * extent), lies inside the lumen (its exact distance from the axis)
-     * and keeps Minimum gap from every other cell. The last is measured
-     * between dense samples of the exact surfaces (its error is below
-     * 0.01 µm), and a sample of one cell inside another is an overlap
-     * whatever the sampling.
+     * every cell lies in the segment (check_file_cell_in_segment()) and
+     * keeps Minimum gap from every other cell, in a periodic segment from
+     * its nearest image across the ends. The gap is measured between dense
+     * samples of the exact surfaces (its error is below 0.01 µm), and a
+     * sample of one cell inside another is an overlap whatever the
+     * sampling.
      */
     void
     check_file_cells(const EvansFungShape            &shape,
                      const std::vector<unsigned int> &lines) const;
+
+    /**
+     * Throw InputError naming @p cell_text unless @p cell lies inside the
+     * lumen (its exact distance from the axis) and, in a closed segment,
+     * keeps half of Minimum gap from the end faces (its exact extent); in a
+     * periodic one (Geometry/Periodic) it may reach across an end, its
+     * centre in [0, L) and its length with Minimum gap under L.
+     */
+    void
+    check_file_cell_in_segment(const EvansFungShape &shape,
+                               const std::string    &cell_text,
+                               const CellPlacement  &cell) const;
 
     /// Append a cell centred on the axis at x.
     void

@@ -9,8 +9,8 @@ One panel per study: for each clustered run of N > 1 cells, against time,
 the smallest gap from a cell to its nearest neighbour (solid) and the
 largest (dashed), from the run's cells.csv (min_gap). A cluster that holds
 together keeps the largest near the starting gap; a cluster that comes
-apart shows it growing. Needs python3-matplotlib
-(`scripts/install-packages.sh --docs`).
+apart shows it growing. The gap axis starts at 0 (contact). Needs
+python3-matplotlib (`scripts/install-packages.sh --docs`).
 """
 import sys
 
@@ -49,8 +49,8 @@ def main(without, with_aggregation, picture):
     handles, labels = panels[0].get_legend_handles_labels()
     handles += [Line2D([], [], color="grey", linestyle="-"), Line2D([], [], color="grey", linestyle="--")]
     labels += ["nearest pair (smallest gap)", "farthest neighbour (largest)"]
-    low, high = panels[0].get_ylim()
-    panels[0].set_ylim(low, high + 0.35 * (high - low))
+    _, high = panels[0].get_ylim()
+    panels[0].set_ylim(0, 1.35 * high)
     panels[0].legend(handles, labels, loc="upper left", ncol=2)
     plot_style.save(figure, picture)
 

@@ -5,7 +5,8 @@
 
 Two panels against time, from cells.csv: (a) the gap between the two
 membranes (min_gap) with the repulsion range of the run's parameters.prm;
-(b) the deformation index of each cell. Needs python3-matplotlib
+(b) the deformation index of each cell, its axis up to 0 (a disc is
+−0.51, a sphere 0). Needs python3-matplotlib
 (`scripts/install-packages.sh --docs`).
 """
 import sys
@@ -37,7 +38,8 @@ def main(directory, picture):
         shape.plot([1e3 * r["time"] for r in mine],
                    [r["deformation_index"] for r in mine], "o-", label=f"cell {c}")
     shape.set_ylabel("deformation index (L − D)/(L + D)")
-    shape.legend()
+    plot_style.from_zero(shape)
+    shape.legend(loc="upper left")
     shape.set_title("(b) their shapes")
     for axes in (gap, shape):
         axes.set_xlabel("time [ms]")

@@ -6,8 +6,9 @@ benchmarks/deformation_map.sh writes: the change of DM (solid) and DL
 did not settle is circled: its drop is a lower bound), against
 the capillary number μū/G in the 10 µm capillary (a colour per shear
 modulus) and against the capillary's diameter (at two capillary numbers);
-the paper's -13% in grey. Below, the cell's outline in the plane of the
-capillary's axis at the end, at five points of the map, with the wall.
+the paper's -13% in grey; the change axes reach up to 0 (no change). Below,
+the cell's outline in the plane of the capillary's axis at the end, at
+five points of the map, with the wall.
 
     /usr/bin/python3 doc/scripts/plot_deformation_map.py output/deformation_map doc/figures/deformation_map.png
 
@@ -59,6 +60,7 @@ def against_capillary_number(axes, rows):
     plot_style.plain_log_ticks(axes.xaxis)
     axes.set_xlabel("capillary number μū/G")
     axes.set_ylabel("change at the end [%]")
+    plot_style.from_zero(axes)
     axes.set_title("10 µm capillary")
     axes.legend(loc="lower left")
 
@@ -80,6 +82,7 @@ def against_diameter(axes, rows):
     axes.set_xlabel("capillary diameter [µm]")
     axes.set_ylabel("change at the end [%]")
     axes.set_title("confinement (7.5 µm cell)")
+    plot_style.from_zero(axes)
     low, high = axes.get_ylim()
     axes.set_ylim(low - 0.25 * (high - low), high)  # room for the legend
     axes.legend(loc="lower right")

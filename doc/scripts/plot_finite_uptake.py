@@ -3,7 +3,8 @@
 one panel per number of cells, a line per layout; Roughton and Forster's
 lumped estimate 1/DL = 1/DM + 1/(θ V_c) dashed, DM (the membrane sink, θ → ∞)
 dotted, the range of θ the cited formulas give at PO₂ 100 Torr shaded grey,
-and the paper's one-cell DM of 1.03-1.18 µm³ s⁻¹ Torr⁻¹ shaded red.
+and the paper's one-cell DM of 1.03-1.18 µm³ s⁻¹ Torr⁻¹ shaded red. The
+DL axes start at 0; θ is on a log axis.
 
     /usr/bin/python3 doc/scripts/plot_finite_uptake.py output/finite_uptake/uptake.csv doc/figures/finite_uptake.png
 
@@ -23,7 +24,7 @@ PAPER_ONE_CELL = (1.03, 1.18)  # An et al. 2022, one cell
 def main(path, picture):
     rows = read_table(path)
     counts = sorted({int(r["n_cells"]) for r in rows})
-    figure, panels = plt.subplots(1, len(counts), figsize=(5 * len(counts), 4),
+    figure, panels = plt.subplots(1, len(counts), figsize=(5 * len(counts), 5),
                                   layout="constrained", squeeze=False)
     for axes, n in zip(panels[0], counts):
         mine = [r for r in rows if int(r["n_cells"]) == n]
@@ -47,10 +48,14 @@ def main(path, picture):
             axes.axhspan(*PAPER_ONE_CELL, color="tab:red", alpha=0.15,
                          label="the paper's one-cell DM, 1.03-1.18")
         axes.set_xscale("log")
+        plot_style.plain_log_ticks(axes.xaxis)
         axes.set_xlabel("θ_CO [mL CO min⁻¹ Torr⁻¹ per mL of blood]")
         axes.set_ylabel("DL [µm³ s⁻¹ Torr⁻¹]")
+        # From 0, and DM's line inside the frame rather than on its edge.
+        axes.set_ylim(0, 1.1 * max(r["dm_total"] for r in mine))
         axes.set_title(f"{n} cell{'s' if n > 1 else ''}")
-        axes.legend(loc="upper left")
+        # Below the panel: inside, every place hides a curve or DM's line.
+        axes.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2)
     plot_style.save(figure, picture)
 
 

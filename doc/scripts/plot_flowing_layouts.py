@@ -9,10 +9,13 @@ Writes two pictures:
                    markers, dashed) beside the steady DM of the cells after
                    flow (filled, solid): the paper's Figs. 7 and 8 with
                    deforming cells. Random layouts show the mean and ± one
-                   standard deviation over their seeds.
+                   standard deviation over their seeds. DM axes from 0.
   PREFIX_time.png  for N cells (default: the largest N below 7 of the study,
                    or 7), DM(t) and the smallest gap between cells against
                    time for each layout (every seed of the random ones).
+                   The DM axis is zoomed on its change of a few per cent,
+                   does not start at zero and is marked broken; the gaps
+                   are on a log axis.
 Needs python3-matplotlib (`scripts/install-packages.sh --docs`).
 """
 import statistics
@@ -50,7 +53,8 @@ def plot_dm(summary, picture):
                                label=f"{layout}, {'after flow' if filled else 'rigid, t = 0'}")
         panel.set_xlabel("number of red cells in the segment")
         panel.set_ylabel(label + " [µm³ s⁻¹ Torr⁻¹]")
-    axes[0].legend()
+        plot_style.from_zero(panel)
+    axes[0].legend(loc="lower right")
     plot_style.save(figure, picture)
 
 
@@ -69,8 +73,10 @@ def plot_time(history, n_cells, picture):
                     label=label)
         if all("min_gap" in r for r in rows):  # a lone cell has none
             gaps.plot(t, [r["min_gap"] for r in rows], marker + "-", color=colour, label=label)
-    uptake.set_ylabel(f"DM of the segment, {n_cells} cells [µm³ s⁻¹ Torr⁻¹]")
-    gaps.set_ylabel("smallest gap between two cells [µm]")
+    uptake.set_ylabel(f"DM of the segment, {n_cells} cells\n[µm³ s⁻¹ Torr⁻¹], axis broken")
+    # From zero the change of a few per cent with time would be flat lines.
+    plot_style.mark_broken(uptake)
+    gaps.set_ylabel("smallest gap between two cells [µm] (log scale)")
     gaps.set_yscale("log")
     plot_style.plain_log_ticks(gaps.yaxis)
     for axes in (uptake, gaps):

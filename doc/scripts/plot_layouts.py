@@ -2,7 +2,7 @@
 """Plot layouts.csv of an `Experiment = layouts` run: DM of the capillary and
 DM per cell against the number of cells, one line per layout (the paper's
 Figs. 7 and 8). Random layouts show their mean with ± one standard
-deviation over the seeds.
+deviation over the seeds. Both DM axes start at 0.
 
     /usr/bin/python3 doc/scripts/plot_layouts.py output/layouts/layouts.csv doc/figures/layouts.png
 
@@ -43,7 +43,8 @@ def main(path, picture):
     per_cell.set_ylabel("DM per cell [µm³ s⁻¹ Torr⁻¹]")
     for axes in (total, per_cell):
         axes.set_xlabel("number of red cells in the 20 µm segment")
-        axes.legend()
+        plot_style.from_zero(axes)
+        axes.legend(loc="lower right" if axes is total else "lower left")
     plot_style.save(figure, picture)
 
 

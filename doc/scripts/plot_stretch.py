@@ -2,7 +2,7 @@
 """Plot the axial and transverse diameters of stretched cells against the
 bead force, one pair of curves per stretch.csv of `Experiment = stretching`,
 over the optical-tweezers measurements of Mills et al. (2004) when a file of
-them is given with --experiment.
+them is given with --experiment. The diameter axis starts at 0.
 
     /usr/bin/python3 doc/scripts/plot_stretch.py PICTURE.png [--experiment mills.csv] LABEL=stretch.csv ...
 
@@ -43,6 +43,7 @@ def main(picture, experiment, runs):
                   label=f"{label}: transverse")
     axes.set_xlabel("force on each bead F [pN]")
     axes.set_ylabel("diameter [µm]")
+    plot_style.from_zero(axes)
     axes.legend()
     plot_style.save(figure, picture)
 

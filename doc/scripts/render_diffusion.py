@@ -1,26 +1,43 @@
 #!/usr/bin/env python3
-"""Render an `Experiment = diffusion` run to a PNG.
+"""Render one DM instant of a run that solved the CO uptake (`Experiment =
+diffusion`, or a flowing run's diffusion.pvd and diffusion_membranes.pvd)
+to a PNG.
 
-    xvfb-run -a /usr/bin/python3 doc/scripts/render_diffusion.py OUTPUT_DIRECTORY PICTURE.png
+    xvfb-run -a /usr/bin/python3 doc/scripts/render_diffusion.py OUTPUT_DIRECTORY PICTURE.png [--time T]
+
+T [s, as the .pvd files list it: 0.012 for 12 ms]: the DM instant to draw,
+the one nearest T (within a tenth of the instants' spacing); a T farther
+from every instant stops the script with the instants the run has. Without
+it, the last instant (the only one, t = 0, of `Experiment = diffusion`). The script prints which instant it draws, and
+the picture's title says it.
 
 Left: the CO partial pressure P on the mid-plane z = 0 of the capillary,
 wall and gas layer (P = P_A on the outside, 0 on the membranes), the
-regions named and their borders drawn, the membranes outlined in white.
+regions named and their borders drawn, the membranes outlined in white and
+their inside grey. On cut cells (`Diffusion/Method = cut cell`) the mesh
+cells inside a red cell have no unknowns and are not in diffusion.pvd;
+the cut cells are drawn whole, so P's smooth continuation across the
+membrane shows as a stair-stepped fringe inside the white outline.
 Right: the membranes coloured by the CO flux density λ into each cell
-(doc/diffusion.md), the paper's Fig. 4f. Both colour scales start at 0:
-P and λ are ≥ 0, their small negative values are undershoot of the
-discretisation. Needs python3-vtk9 (`scripts/install-packages.sh --docs`).
+(doc/diffusion.md), the paper's Fig. 4f. Both colour scales (viridis)
+start at 0: P and λ are ≥ 0, their small negative values are undershoot
+of the discretisation. Needs python3-vtk9 and python3-matplotlib
+(`scripts/install-packages.sh --docs`).
 """
+import argparse
 import sys
 
 import vtk
 
 from rbc_ifem_run import Run
-from vtk_picture import (FLUX_UNIT, actor, solid_actor, legend, non_negative_range, parallel_camera,
-                         rainbow, save_png, scale_bar, smooth_surface, world_label)
+from vtk_picture import (FLUX_UNIT, actor, colour_map, label, legend, non_negative_range,
+                         parallel_camera, save_png, scale_bar, smooth_surface, solid_actor,
+                         world_label)
 
-SIZE = (1600, 680)
-LEGEND = 0.2  # of the window's height, under both views
+SIZE = (1600, 720)
+LEGEND = 0.19  # of the window's height, under both views
+TITLE = 0.06  # of the window's height, above both views
+INSIDE = (0.72, 0.72, 0.72)  # the cells' inside, which the cut-cell solve leaves out
 
 
 def mid_plane():
@@ -49,12 +66,29 @@ def lines(segments, colour, width):
     return result
 
 
+def inside_of(outline):
+    """The regions the cut OUTLINE of the membranes encloses, filled grey a
+    little behind the mid-plane: the field drawn over it hides it wherever
+    the mesh has cells, so it shows where the solve has none."""
+    fill = vtk.vtkContourTriangulator()
+    fill.SetInputConnection(outline.GetOutputPort())
+    behind = vtk.vtkTransform()
+    behind.Translate(0, 0, -0.01)
+    moved = vtk.vtkTransformPolyDataFilter()
+    moved.SetInputConnection(fill.GetOutputPort())
+    moved.SetTransform(behind)
+    result = solid_actor(moved, INSIDE)
+    result.GetProperty().LightingOff()
+    result.held = (fill, behind, moved)  # VTK frees a filter whose Python object goes
+    return result
+
+
 def pressure_view(run, field, membranes, p_alveolar):
     length = run.parameter("Capillary length")
     lumen = run.parameter("Capillary radius")
     wall = lumen + run.parameter("Wall thickness")
     outside = wall + run.parameter("Gas layer thickness")
-    colours = rainbow(0, p_alveolar)
+    colours = colour_map(0, p_alveolar)
 
     cut = vtk.vtkCutter()
     cut.SetInputData(field)
@@ -65,9 +99,10 @@ def pressure_view(run, field, membranes, p_alveolar):
     outline_actor = solid_actor(outline, (1, 1, 1), line_width=2)
 
     renderer = vtk.vtkRenderer()
-    renderer.SetViewport(0, LEGEND, 0.5, 1)
+    renderer.SetViewport(0, LEGEND, 0.5, 1 - TITLE)
     renderer.SetBackground(1, 1, 1)
     renderer.AddActor(actor(cut, "co_pressure", (0, p_alveolar), colours, flat=True))
+    renderer.AddActor(inside_of(outline))
     renderer.AddActor(outline_actor)
     # The borders of lumen, wall and gas layer, and names beside them.
     z = 0.01
@@ -86,9 +121,9 @@ def pressure_view(run, field, membranes, p_alveolar):
 
 def flux_view(membranes, p_alveolar):
     low, high = non_negative_range(membranes.GetPointData().GetArray("co_flux"))
-    colours = rainbow(low, high)
+    colours = colour_map(low, high)
     renderer = vtk.vtkRenderer()
-    renderer.SetViewport(0.5, LEGEND, 1, 1)
+    renderer.SetViewport(0.5, LEGEND, 1, 1 - TITLE)
     renderer.SetBackground(1, 1, 1)
     renderer.AddActor(actor(smooth_surface(membranes), "co_flux", (low, high), colours))
     x0, x1, *_ = membranes.GetBounds()
@@ -99,17 +134,54 @@ def flux_view(membranes, p_alveolar):
     return renderer, bar
 
 
-def main(directory, picture):
+def instant(run, wanted):
+    """(time, membranes file, field file) of the DM instant nearest WANTED
+    [s] (the last if None), and a phrase that says which it is. A WANTED
+    farther from every instant than a tenth of their spacing is an error
+    that lists them."""
+    series = run.series("diffusion_membranes.pvd")
+    fields = dict(run.series("diffusion.pvd"))
+    times = [t for t, _ in series]
+    listed = ", ".join(f"{t:g}" for t in times)
+    if wanted is None:
+        k = len(series) - 1
+        which = ("the run's only DM instant" if k == 0
+                 else f"the last of its {len(series)} DM instants")
+    else:
+        k = min(range(len(times)), key=lambda i: abs(times[i] - wanted))
+        spacing = min((b - a for a, b in zip(times, times[1:])), default=0.0)
+        if abs(times[k] - wanted) > max(0.1 * spacing, 1e-9 * max(1.0, abs(wanted))):
+            sys.exit(f"no DM instant at t = {wanted:g} s in {run.directory}; "
+                     f"its instants [s]: {listed}")
+        which = f"DM instant {k + 1} of {len(series)}"
+    time, membranes = series[k]
+    if time not in fields:
+        sys.exit(f"diffusion.pvd of {run.directory} has no t = {time:g} s; its instants [s]: "
+                 + ", ".join(f"{t:g}" for t in fields))
+    return time, membranes, fields[time], which
+
+
+def main(directory, picture, wanted):
     run = Run(directory)
-    field = run.dataset(run.series("diffusion.pvd")[0][1])
-    membranes = run.dataset(run.series("diffusion_membranes.pvd")[0][1])
+    time, membranes_file, field_file, which = instant(run, wanted)
+    print(f"drawing t = {time:g} s ({1e3 * time:g} ms), {which}")
+    field = run.dataset(field_file)
+    membranes = run.dataset(membranes_file)
     p_alveolar = run.parameter("Alveolar pressure")
     left, left_bar = pressure_view(run, field, membranes, p_alveolar)
     right, right_bar = flux_view(membranes, p_alveolar)
-    save_png([left, right, left_bar, right_bar], picture, SIZE)
+    title = vtk.vtkRenderer()
+    title.SetViewport(0, 1 - TITLE, 1, 1)
+    title.SetBackground(1, 1, 1)
+    label(title, f"{run.name}: t = {1e3 * time:g} ms, {which}", 0.01, 0.2)
+    save_png([title, left, right, left_bar, right_bar], picture, SIZE)
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        sys.exit(__doc__)
-    main(sys.argv[1], sys.argv[2])
+    arguments = argparse.ArgumentParser(
+        description=__doc__.split("\n\n")[0], usage=__doc__.split("\n\n")[1].strip())
+    arguments.add_argument("directory")
+    arguments.add_argument("picture")
+    arguments.add_argument("--time", type=float, help="the DM instant [s] (default: the last)")
+    given = arguments.parse_args()
+    main(given.directory, given.picture, given.time)

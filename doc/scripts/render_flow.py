@@ -6,7 +6,8 @@
 Top: the axial velocity on the mid-plane z = 0 of the capillary, with
 velocity arrows along three cross-sections: the Poiseuille parabola.
 Bottom: the plasma pressure on the same plane, falling linearly along the
-capillary (pN/µm² = Pa, doc/design.md). Needs python3-vtk9
+capillary (pN/µm² = Pa, doc/design.md), from 0 at the outlet. Both colour
+scales are viridis from 0. Needs python3-vtk9 and python3-matplotlib
 (`scripts/install-packages.sh --docs`).
 """
 import sys
@@ -14,8 +15,8 @@ import sys
 import vtk
 
 from rbc_ifem_run import Run
-from vtk_picture import (actor, solid_actor, label, legend, non_negative_range, parallel_camera, rainbow,
-                         save_png, scale_bar)
+from vtk_picture import (actor, colour_map, label, legend, non_negative_range, parallel_camera,
+                         save_png, scale_bar, solid_actor)
 
 SIZE = (1000, 900)
 VIEW, BAR = 0.4, 0.1  # heights of each view and of its colour bar, of the window's
@@ -79,7 +80,7 @@ def main(directory, picture):
     data = cut.GetOutput().GetPointData()
 
     _, top = non_negative_range(data.GetArray("velocity"), 0)
-    speed = rainbow(0, top)
+    speed = colour_map(0, top)
     upper = view(BAR + VIEW + BAR, length, radius)
     upper.AddActor(actor(cut, "velocity", (0, top), speed, component=0, flat=True))
     upper.AddActor(arrows(field, radius, top))
@@ -88,7 +89,7 @@ def main(directory, picture):
     scale_bar(upper, 5, SIZE, x=0.02, y=0.05)
 
     low, high = non_negative_range(data.GetArray("pressure"))
-    pressure = rainbow(low, high)
+    pressure = colour_map(low, high)
     lower = view(BAR, length, radius)
     lower.AddActor(actor(cut, "pressure", (low, high), pressure, flat=True))
     label(lower, "plasma pressure p", 0.02, 0.92)

@@ -7,17 +7,17 @@ paper's Fig. 6 with deforming cells.
 One row per layout of N cells (uniform, random with the first seed,
 clustered): left the rigid cells at t = 0, right the cells at the end of
 the run, each membrane coloured by the CO flux density λ into the cell
-(doc/diffusion.md), on one colour scale from 0 and one scale of length for
-the whole picture. The view is from the side, the
-flow from left to right. Needs python3-vtk9 (`scripts/install-packages.sh
---docs`).
+(doc/diffusion.md), on one colour scale (viridis) from 0 and one scale of
+length for the whole picture. The view is from the side, the flow from
+left to right. Needs python3-vtk9 and python3-matplotlib
+(`scripts/install-packages.sh --docs`).
 """
 import sys
 
 import vtk
 
 from rbc_ifem_run import Run
-from vtk_picture import (FLUX_UNIT, actor, label, legend, parallel_camera, rainbow, save_png,
+from vtk_picture import (FLUX_UNIT, actor, colour_map, label, legend, parallel_camera, save_png,
                          scale_bar, smooth_surface)
 
 LAYOUTS = ("uniform", "random", "clustered")
@@ -47,7 +47,7 @@ def main(directory, n_cells, picture):
     # values are undershoot (doc/diffusion.md).
     high = max(m.GetPointData().GetArray("co_flux").GetRange()[1]
                for first, (_, last) in membranes.values() for m in (first, last))
-    colours = rainbow(0, high)
+    colours = colour_map(0, high)
     rows = len(membranes)
     size = (1400, 280 * rows + 130)
     bottom_of_views = 130 / size[1]

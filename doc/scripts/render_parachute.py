@@ -6,13 +6,17 @@ immersed cells) as it deforms into a parachute.
 
 PICTURE: the shapes N of cell_0.pvd (default: the first, about one third, two
 thirds and the last) seen from the side, the flow going to the right,
-coloured by the magnitude of the nodal membrane force; every view has the
-same scale (the 5 µm bar), so the sizes compare. If the run solved the CO
-diffusion, PICTURE_flux.png next to it: the last membrane of
-diffusion_membranes.pvd seen obliquely from behind, coloured by the CO flux
-density λ into the cell (doc/diffusion.md; the scale starts at 0, λ's small
-negative values are undershoot), with arrows of the flux -λn (the paper's
-Fig. 4f). Needs python3-vtk9 (`scripts/install-packages.sh --docs`).
+coloured by the magnitude of the membrane force per unit area,
+|force_density| [pN/µm²]: the nodal force over the node's lumped area,
+which unlike the nodal force (`force`, pN per node) does not shrink as the
+membrane is refined (doc/outputs.md). One colour scale (viridis, from 0)
+for all; every view has the same scale of length (the 5 µm bar), so the
+sizes compare. If the run solved the CO diffusion, PICTURE_flux.png next
+to it: the last membrane of diffusion_membranes.pvd seen obliquely from
+behind, coloured by the CO flux density λ into the cell (doc/diffusion.md;
+the scale starts at 0, λ's small negative values are undershoot), with
+arrows of the flux -λn (the paper's Fig. 4f). Needs python3-vtk9 and
+python3-matplotlib (`scripts/install-packages.sh --docs`).
 """
 import os
 import sys
@@ -20,8 +24,11 @@ import sys
 import vtk
 
 from rbc_ifem_run import Run
-from vtk_picture import (FLUX_UNIT, actor, label, legend, non_negative_range, parallel_camera,
-                         rainbow, save_png, scale_bar, smooth_surface)
+from vtk_picture import (FLUX_UNIT, actor, colour_map, label, legend, non_negative_range,
+                         parallel_camera, save_png, scale_bar, smooth_surface)
+
+# The membrane force per unit area [pN/µm²], mesh independent (Membrane::force_densities()).
+FORCE = "force_density"
 
 
 def render_shapes(run, picture, chosen):
@@ -29,8 +36,8 @@ def render_shapes(run, picture, chosen):
     n = len(found)
     chosen = chosen or sorted({0, n // 3, 2 * n // 3, n - 1})
     shapes = [(found[k][0], run.dataset(found[k][1])) for k in chosen]
-    largest = max(s.GetPointData().GetArray("force").GetMaxNorm() for _, s in shapes)
-    colours = rainbow(0, largest, vector=True)
+    largest = max(s.GetPointData().GetArray(FORCE).GetMaxNorm() for _, s in shapes)
+    colours = colour_map(0, largest, vector=True)
     # One scale for all: the largest shape fills 70 % of a view's height.
     size = max(max(b[1] - b[0], b[3] - b[2], b[5] - b[4])
                for b in (s.GetBounds() for _, s in shapes))
@@ -42,7 +49,7 @@ def render_shapes(run, picture, chosen):
         renderer = vtk.vtkRenderer()
         renderer.SetBackground(1, 1, 1)
         renderer.SetViewport(k / len(shapes), legend_height, (k + 1) / len(shapes), 1)
-        renderer.AddActor(actor(smooth_surface(shape), "force", (0, largest), colours))
+        renderer.AddActor(actor(smooth_surface(shape), FORCE, (0, largest), colours))
         label(renderer, f"t = {1e3 * time:g} ms", 0.05, 0.9)
         # From -y, so x (the flow) runs to the right; centred on each shape,
         # the cells drift in the frame.
@@ -51,7 +58,8 @@ def render_shapes(run, picture, chosen):
     scale_bar(renderers[0], 5, window, x=0.06, y=0.05)
     label(renderers[-1], "flow →", 0.95, 0.05, justify="right")
 
-    bottom = legend(colours, "magnitude of the nodal membrane force [pN]", (0, 0, 1, legend_height), 0.5)
+    bottom = legend(colours, "magnitude of the membrane force per unit area [pN/µm²]",
+                    (0, 0, 1, legend_height), 0.5)
     save_png(renderers + [bottom], picture, window)
 
 
@@ -86,7 +94,7 @@ def render_flux(run, picture):
     time, file = run.series("diffusion_membranes.pvd")[-1]
     membrane = run.dataset(file)
     low, high = non_negative_range(membrane.GetPointData().GetArray("co_flux"))
-    colours = rainbow(low, high)
+    colours = colour_map(low, high)
     window = (900, 900)
 
     renderer = vtk.vtkRenderer()

@@ -6,15 +6,15 @@
 Shows the equilibria N of stretch.pvd (default: the first, middle and last)
 seen obliquely from above, the beads pulling along x, coloured by the
 magnitude of the displacement from the reference shape, all on one scale
-of length (the 5 µm bar) and of colour. Needs python3-vtk9
-(`scripts/install-packages.sh --docs`).
+of length (the 5 µm bar) and of colour (viridis, from 0). Needs
+python3-vtk9 and python3-matplotlib (`scripts/install-packages.sh --docs`).
 """
 import sys
 
 import vtk
 
 from rbc_ifem_run import Run
-from vtk_picture import (actor, label, legend, parallel_camera, rainbow, save_png, scale_bar,
+from vtk_picture import (actor, colour_map, label, legend, parallel_camera, save_png, scale_bar,
                          smooth_surface)
 
 SIZE = (1350, 470)
@@ -28,7 +28,7 @@ def main(directory, picture, chosen):
         chosen = [0, len(entries) // 2, len(entries) - 1]
     shapes = [(entries[k][0], run.dataset(entries[k][1])) for k in chosen]
     largest = max(s.GetPointData().GetArray("displacement").GetMaxNorm() for _, s in shapes)
-    colours = rainbow(0, largest, vector=True)
+    colours = colour_map(0, largest, vector=True)
     widest = max(s.GetBounds()[1] - s.GetBounds()[0] for _, s in shapes)
 
     renderers = []

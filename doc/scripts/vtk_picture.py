@@ -1,11 +1,14 @@
 """What the doc/scripts/render_*.py scripts share: drawing rbc-ifem's fields with VTK
 and saving the view as a PNG, in one style. Reading the run's files is
-rbc_ifem_run's (read_dataset, Run.series). Needs python3-vtk9 and the
-DejaVu fonts (fonts-dejavu-core; `scripts/install-packages.sh --docs`).
+rbc_ifem_run's (read_dataset, Run.series). Needs python3-vtk9,
+python3-matplotlib (for its colour maps) and the DejaVu fonts
+(fonts-dejavu-core; `scripts/install-packages.sh --docs`).
 
 Style: black DejaVu Sans text on white (VTK's own font has no µ, ⁻, ³ or →
 and draws [ ] as ( )); smooth (Gouraud) shading on surfaces with normals;
-colour bars with round ticks, the title above the bar and the ticks below;
+perceptually uniform colour maps (viridis, cividis: colour_map), never a
+rainbow, whose bright bands read as features that are not there; colour
+bars with round ticks, the title above the bar and the ticks below;
 parallel projection, so that a scale bar holds everywhere in a view.
 """
 import math
@@ -112,16 +115,30 @@ def smooth_surface(algorithm_or_data):
     return normals
 
 
-def rainbow(low, high, vector=False):
-    """Blue to red from LOW to HIGH; values outside take the end colours."""
-    colours = vtk.vtkLookupTable()
-    colours.SetHueRange(0.667, 0.0)
-    colours.SetNumberOfTableValues(256)
-    colours.SetRange(low, high)
+def colour_map(low, high, vector=False, name="viridis"):
+    """A lookup table from LOW to HIGH in matplotlib's perceptually uniform,
+    sequential NAME (viridis or cividis: lightness grows with the value, so
+    that the picture reads in grey and to colour-blind eyes; VTK has no
+    such preset); values outside take the end colours. VECTOR: colour a
+    vector array by its magnitude."""
+    from matplotlib import colormaps  # here: the rest of this file needs only VTK
+    colours = colormaps[name]
+    table = vtk.vtkLookupTable()
+    table.SetNumberOfTableValues(256)
+    table.SetRange(low, high)
+    for k in range(256):
+        table.SetTableValue(k, *colours(k / 255))
     if vector:
-        colours.SetVectorModeToMagnitude()
-    colours.Build()
-    return colours
+        table.SetVectorModeToMagnitude()
+    table.Build()  # keeps the values set (they are newer), adds the out-of-range colours
+    return table
+
+
+def colours_of(n, name="viridis"):
+    """N colours (r, g, b) spread over matplotlib's NAME, dark to light: for
+    things numbered in an order, such as the cells along the capillary."""
+    from matplotlib import colormaps
+    return [colormaps[name](k / max(n - 1, 1))[:3] for k in range(n)]
 
 
 def non_negative_range(array, component=-1):

@@ -7,29 +7,12 @@
 
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <sstream>
 
 namespace rbc_ifem
 {
   namespace
   {
-    /// Set "Subsection/.../Entry" of @p prm to @p value.
-    void
-    set_entry(ParameterHandler  &prm,
-              const std::string &path,
-              const std::string &value)
-    {
-      std::vector<std::string> names = Utilities::split_string_list(path, '/');
-      const std::string        entry = names.back();
-      names.pop_back();
-      for (const std::string &subsection : names)
-        prm.enter_subsection(subsection);
-      prm.set(entry, value);
-      for (std::size_t i = 0; i < names.size(); ++i)
-        prm.leave_subsection();
-    }
-
     /// The whole content of the file @p path.
     std::string
     file_bytes(const std::string &path)
@@ -72,29 +55,16 @@ namespace rbc_ifem
   with_input_copies(const std::string            &text,
                     const std::vector<InputFile> &inputs)
   {
-    static const std::regex  set_line(R"((\s*set (.*?)\s*= ).*)");
-    static const std::regex  subsection_line(R"(\s*subsection (.*?)\s*)");
-    static const std::regex  end_line(R"(\s*end\s*)");
-    std::istringstream       lines(text);
-    std::string              line, result;
-    std::vector<std::string> subsections;
-    while (std::getline(lines, line))
+    std::string result;
+    for (const ParameterLine &line : parameter_lines(text))
       {
-        std::smatch m;
-        if (std::regex_match(line, m, set_line))
-          {
-            std::string path;
-            for (const std::string &subsection : subsections)
-              path += subsection + '/';
-            for (const InputFile &input : inputs)
-              if (input.entry == path + m[2].str())
-                line = m[1].str() + copy_name(input);
-          }
-        else if (std::regex_match(line, m, subsection_line))
-          subsections.push_back(m[1]);
-        else if (std::regex_match(line, end_line) && !subsections.empty())
-          subsections.pop_back();
-        result += line + '\n';
+        std::string written = line.text;
+        for (const InputFile &input : inputs)
+          if (line.kind == ParameterLine::Kind::set &&
+              input.entry == line.prefix + line.name)
+            written = line.text.substr(0, line.text.find('=') + 1) + " " +
+                      copy_name(input);
+        result += written + '\n';
       }
     return result;
   }

@@ -1,11 +1,10 @@
 #include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/parameter_names.h>
+#include <rbc_ifem/base/parameter_text.h>
 
 #include <algorithm>
 #include <cctype>
-#include <regex>
 #include <set>
-#include <sstream>
 
 namespace rbc_ifem
 {
@@ -126,46 +125,29 @@ namespace rbc_ifem
                         const std::string                        &filename,
                         const std::map<std::string, std::string> &patterns)
   {
-    static const std::regex set_line(R"(\s*set\s+(.*?)\s*=.*)");
-    static const std::regex subsection_line(R"(\s*subsection\s+(.*?)\s*)");
-    static const std::regex end_line(R"(\s*end\s*)");
-    const std::string       listing =
+    const std::string listing =
       "\nRun 'rbc-ifem --print-parameters' for every parameter, its "
       "allowed values and its default.";
-    std::istringstream       lines(text);
-    std::string              line, prefix;
-    std::vector<std::size_t> opened;
-    for (unsigned int number = 1; std::getline(lines, line); ++number)
+    for (const ParameterLine &line : parameter_lines(text))
       {
-        line                    = line.substr(0, line.find('#'));
         const std::string where = "in parameter file '" + filename +
-                                  "', line " + std::to_string(number) + ": ";
-        std::smatch m;
-        if (std::regex_match(line, m, subsection_line))
-          {
-            const Declared declared = declared_in(prefix, patterns);
-            if (std::find(declared.subsections.begin(),
-                          declared.subsections.end(),
-                          m[1].str()) == declared.subsections.end())
-              throw InputError(where + "there is no subsection '" + m[1].str() +
-                               "' in " + place(prefix) + "." +
-                               did_you_mean(m[1], declared.subsections) +
-                               listing);
-            opened.push_back(prefix.size());
-            prefix += m[1].str() + "/";
-          }
-        else if (std::regex_match(line, end_line) && !opened.empty())
-          {
-            prefix.resize(opened.back());
-            opened.pop_back();
-          }
-        else if (std::regex_match(line, m, set_line) &&
-                 patterns.count(prefix + m[1].str()) == 0)
-          throw InputError(
-            where + "there is no parameter '" + m[1].str() + "' in " +
-            place(prefix) + "." +
-            did_you_mean(m[1], declared_in(prefix, patterns).entries) +
-            declared_elsewhere(m[1], patterns) + listing);
+                                  "', line " + std::to_string(line.number) +
+                                  ": ";
+        const Declared declared = declared_in(line.prefix, patterns);
+        if (line.kind == ParameterLine::Kind::subsection &&
+            std::find(declared.subsections.begin(),
+                      declared.subsections.end(),
+                      line.name) == declared.subsections.end())
+          throw InputError(where + "there is no subsection '" + line.name +
+                           "' in " + place(line.prefix) + "." +
+                           did_you_mean(line.name, declared.subsections) +
+                           listing);
+        if (line.kind == ParameterLine::Kind::set &&
+            patterns.count(line.prefix + line.name) == 0)
+          throw InputError(where + "there is no parameter '" + line.name +
+                           "' in " + place(line.prefix) + "." +
+                           did_you_mean(line.name, declared.entries) +
+                           declared_elsewhere(line.name, patterns) + listing);
       }
   }
 

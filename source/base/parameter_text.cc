@@ -164,33 +164,80 @@ namespace rbc_ifem
     return patterns;
   }
 
-  std::vector<ParameterEntry>
-  parameter_entries(const std::string &text)
+  std::vector<ParameterLine>
+  parameter_lines(const std::string &text)
   {
     // A value ends at a comment (deal.II adds "# default: ..." to a value
     // that is not the default).
-    static const std::regex set_line(R"(\s*set (.*?)\s*=\s*([^#]*?)\s*(#.*)?)");
-    static const std::regex subsection_line(R"(\s*subsection (.*?)\s*)");
-    static const std::regex end_line(R"(\s*end\s*)");
-    std::istringstream      lines(text);
-    std::string             line;
-    std::vector<std::string>    subsections;
-    std::vector<ParameterEntry> entries;
+    static const std::regex set_line(
+      R"(\s*set\s+(.*?)\s*=\s*([^#]*?)\s*(#.*)?)");
+    static const std::regex subsection_line(
+      R"(\s*subsection\s+(.*?)\s*(#.*)?)");
+    static const std::regex    end_line(R"(\s*end\s*(#.*)?)");
+    std::istringstream         lines(text);
+    std::string                line, prefix;
+    std::vector<std::size_t>   opened;
+    std::vector<ParameterLine> result;
     for (unsigned int number = 1; std::getline(lines, line); ++number)
       {
-        std::smatch m;
+        std::smatch   m;
+        ParameterLine parsed{
+          ParameterLine::Kind::other, "", "", prefix, number, line};
         if (std::regex_match(line, m, set_line))
           {
-            std::string path;
-            for (const std::string &subsection : subsections)
-              path += subsection + '/';
-            entries.push_back({path + m[1].str(), m[2], number});
+            parsed.kind  = ParameterLine::Kind::set;
+            parsed.name  = m[1];
+            parsed.value = m[2];
           }
         else if (std::regex_match(line, m, subsection_line))
-          subsections.push_back(m[1]);
-        else if (std::regex_match(line, end_line) && !subsections.empty())
-          subsections.pop_back();
+          {
+            parsed.kind = ParameterLine::Kind::subsection;
+            parsed.name = m[1];
+            opened.push_back(prefix.size());
+            prefix += parsed.name + '/';
+          }
+        else if (std::regex_match(line, end_line) && !opened.empty())
+          {
+            parsed.kind = ParameterLine::Kind::end;
+            prefix.resize(opened.back());
+            opened.pop_back();
+          }
+        result.push_back(parsed);
       }
+    return result;
+  }
+
+  void
+  set_entry(ParameterHandler  &prm,
+            const std::string &path,
+            const std::string &value)
+  {
+    std::vector<std::string> names = Utilities::split_string_list(path, '/');
+    const std::string        entry = names.back();
+    names.pop_back();
+    for (const std::string &subsection : names)
+      prm.enter_subsection(subsection);
+    try
+      {
+        prm.set(entry, value);
+      }
+    catch (...)
+      {
+        for (std::size_t i = 0; i < names.size(); ++i)
+          prm.leave_subsection();
+        throw;
+      }
+    for (std::size_t i = 0; i < names.size(); ++i)
+      prm.leave_subsection();
+  }
+
+  std::vector<ParameterEntry>
+  parameter_entries(const std::string &text)
+  {
+    std::vector<ParameterEntry> entries;
+    for (const ParameterLine &line : parameter_lines(text))
+      if (line.kind == ParameterLine::Kind::set)
+        entries.push_back({line.prefix + line.name, line.value, line.number});
     return entries;
   }
 
@@ -278,38 +325,20 @@ namespace rbc_ifem
 
     std::ostringstream listing;
     prm.print_parameters(listing, ParameterHandler::PRM);
-    std::istringstream lines(listing.str());
 
-    // deal.II's listing, its title line replaced, an "Allowed" line put
-    // before every set line: the subsections entered so far give its path.
-    static const std::regex  set_line(R"((\s*)set (.*?)\s*=.*)");
-    static const std::regex  subsection_line(R"(\s*subsection (.*))");
-    static const std::regex  end_line(R"(\s*end\s*)");
-    std::vector<std::string> subsections;
-    std::string              line, text;
-    // deal.II's title and its underline.
-    std::getline(lines, line);
-    std::getline(lines, line);
-    text = "# Listing of Parameters of " + version_line() + '\n';
-    while (std::getline(lines, line))
+    // deal.II's listing, its title line replaced (the title and its
+    // underline, lines 1 and 2), an "Allowed" line put before every set line.
+    std::string text = "# Listing of Parameters of " + version_line() + '\n';
+    for (const ParameterLine &line : parameter_lines(listing.str()))
       {
-        std::smatch m;
-        if (std::regex_match(line, m, set_line))
-          {
-            std::string path;
-            for (const std::string &subsection : subsections)
-              path += subsection + '/';
-            const auto pattern = patterns.find(path + m[2].str());
-            if (pattern != patterns.end())
-              text += comment_lines(allowed_values(pattern->second),
-                                    m[1],
-                                    "Allowed: ");
-          }
-        else if (std::regex_match(line, m, subsection_line))
-          subsections.push_back(m[1]);
-        else if (std::regex_match(line, end_line))
-          subsections.pop_back();
-        text += line + '\n';
+        if (line.number <= 2)
+          continue;
+        const auto pattern = patterns.find(line.prefix + line.name);
+        if (line.kind == ParameterLine::Kind::set && pattern != patterns.end())
+          text += comment_lines(allowed_values(pattern->second),
+                                line.text.substr(0, line.text.find("set")),
+                                "Allowed: ");
+        text += line.text + '\n';
       }
     return text;
   }

@@ -10,19 +10,7 @@ namespace rbc_ifem
   bool
   PositiveOrAuto::match(const std::string &text) const
   {
-    if (Utilities::trim(text) == "auto")
-      return true;
-    try
-      {
-        std::size_t  end   = 0;
-        const double value = std::stod(text, &end);
-        return value > 0. && std::isfinite(value) &&
-               Utilities::trim(text.substr(end)).empty();
-      }
-    catch (const std::exception &)
-      {
-        return false;
-      }
+    return Utilities::trim(text) == "auto" || GreaterThan().match(text);
   }
 
   std::string

@@ -211,28 +211,17 @@ namespace rbc_ifem
                            const std::string &value,
                            const std::string &origin)
   {
-    std::vector<std::string> names = Utilities::split_string_list(path, '/');
-    const std::string        entry = names.back();
-    names.pop_back();
-    for (const std::string &subsection : names)
-      prm.enter_subsection(subsection);
-    bool matches = true;
     try
       {
-        // set() checks the value against the pattern, as parsing does.
-        prm.set(entry, value);
+        set_entry(prm, path, value);
       }
     catch (const ExceptionBase &)
       {
-        matches = false;
+        throw InputError(path,
+                         value,
+                         allowed_values(parameter_patterns(prm).at(path)) +
+                           " (" + origin + ").");
       }
-    for (std::size_t i = 0; i < names.size(); ++i)
-      prm.leave_subsection();
-    if (!matches)
-      throw InputError(path,
-                       value,
-                       allowed_values(parameter_patterns(prm).at(path)) + " (" +
-                         origin + ").");
   }
 
   void

@@ -27,6 +27,46 @@ namespace rbc_ifem
   std::map<std::string, std::string>
   parameter_patterns(const ParameterHandler &prm);
 
+  /**
+   * One line of a .prm text as deal.II reads it: what it is, the entry or
+   * subsection it names, and the subsections it lies in. What every reader
+   * of a .prm text here walks, so that each follows the subsections alike.
+   */
+  struct ParameterLine
+  {
+    enum class Kind
+    {
+      set,
+      subsection,
+      end,
+      other
+    };
+    Kind kind;
+    /// The entry of a `set` line, the subsection of a `subsection` line.
+    std::string name;
+    /// A `set` line's value, up to a comment, without blanks at its ends.
+    std::string value;
+    /// The subsections around the line, "A/B/" ("" at the top level).
+    std::string prefix;
+    /// The line's number, from 1, and the line as written.
+    unsigned int number;
+    std::string  text;
+  };
+
+  /// Every line of a .prm @p text.
+  std::vector<ParameterLine>
+  parameter_lines(const std::string &text);
+
+  /**
+   * Set the entry @p path ("Subsection/.../Entry") of @p prm to @p value
+   * (ParameterHandler::set(), which checks the value against the entry's
+   * pattern and throws deal.II's exception if it does not match).
+   */
+  void
+  set_entry(ParameterHandler  &prm,
+            const std::string &path,
+            const std::string &value);
+
   /// One `set` line of a .prm text: "Subsection/.../Entry", the value, and
   /// the line's number (from 1).
   struct ParameterEntry

@@ -4,16 +4,18 @@
 # the tests, strace for the fault test's injected kills, clang-format for the
 # code style and python3 for the pages' generated tables
 # (doc/scripts/tables.py). With --docs also what renders
-# the documentation's figures (python3-vtk9, python3-matplotlib and a virtual
-# X server and the DejaVu fonts), ParaView's pvbatch with its Python modules
-# for doc/scripts/paraview_lab_frame.py (paraview, python3-paraview; a build
-# configured with them runs its test, label paraview) and doxygen for the
+# the documentation's figures (python3-matplotlib, a virtual X server and
+# the DejaVu fonts) and ParaView's pvbatch with its Python modules for
+# doc/scripts/paraview_lab_frame.py (paraview, python3-paraview; a build
+# configured with them runs its test, label paraview); python3-paraview
+# also carries VTK's Python modules (import vtk), which the render scripts
+# use, and conflicts with Debian's python3-vtk9); and doxygen for the
 # headers' reference (scripts/doxygen.sh). Uses sudo when not run as root.
 set -euo pipefail
 
 packages=(libdeal.ii-dev g++ cmake make openmpi-bin numdiff strace clang-format python3)
 if [ "${1:-}" = "--docs" ]; then
-  packages+=(python3-vtk9 python3-matplotlib xvfb xauth fonts-dejavu-core paraview python3-paraview doxygen)
+  packages+=(python3-matplotlib xvfb xauth fonts-dejavu-core paraview python3-paraview doxygen)
 fi
 
 installed=$(dpkg-query -W -f='${Status}\n' "${packages[@]}" 2>/dev/null | grep -c "install ok installed" || true)

@@ -12,7 +12,7 @@ five points of the map, with the wall.
 
     /usr/bin/python3 doc/scripts/plot_deformation_map.py output/deformation_map doc/figures/deformation_map.png
 
-Needs python3-matplotlib and python3-vtk9 (`scripts/install-packages.sh --docs`).
+Needs python3-matplotlib and python3-paraview (`scripts/install-packages.sh --docs`).
 """
 import os
 import sys

@@ -17,7 +17,7 @@ run), each membrane element coloured by its force density |f| [pN/µm²]
 (cell_C.pvd). The picture goes to --save, by default RUN/run.png.
 
 An axis that does not start at zero has the break marked on it (//) and
-says so in its label. Needs python3-matplotlib, and python3-vtk9 for --time
+says so in its label. Needs python3-matplotlib, and python3-paraview for --time
 (`scripts/install-packages.sh --docs`).
 """
 import argparse

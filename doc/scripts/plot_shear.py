@@ -10,7 +10,7 @@ values in doc/results/shear_references.csv and the small-deformation theory
 D = 25/12 Ca; (c) the steady shapes: the cut of each capsule's last membrane
 (the last file of cell_0.pvd) by the shear plane z = 0, one colour per Ca
 as in (a), keyed by the colour bar. Needs python3-matplotlib and
-python3-vtk9 (`scripts/install-packages.sh --docs`).
+python3-paraview (`scripts/install-packages.sh --docs`).
 """
 import os
 import sys

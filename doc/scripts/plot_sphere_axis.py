@@ -12,7 +12,7 @@ the last file of flow.pvd, against the distance from the sphere's centre. The
 sphere is held, so the plasma inside it should be at rest. Prints the mean
 u_x over the inner half of the diameter and adds it to
 doc/results/sphere_axis_velocity.csv (rbc_ifem_run.add_results). Needs python3-matplotlib and
-python3-vtk9 (`scripts/install-packages.sh --docs`).
+python3-paraview (`scripts/install-packages.sh --docs`).
 """
 import os
 import sys

@@ -29,7 +29,7 @@ read_dataset(path), read_parameter(path, name); parse_table(text) reads a
 table a program printed. Numbers in a table become floats, text (a
 layout's name, a reference's source) stays text, and empty fields (min_gap of a lone cell, wall_gap in the shear box) are left
 out of their row: test with `"min_gap" in row`. read_dataset needs
-python3-vtk9, the rest only Python (`scripts/install-packages.sh --docs`).
+python3-paraview, the rest only Python (`scripts/install-packages.sh --docs`).
 """
 import csv
 import datetime
@@ -107,7 +107,7 @@ def read_series(path):
 def read_dataset(path):
     """The vtk data set in the .vtu or .pvtu file PATH. deal.II writes every
     field, cell data too, as point data."""
-    import vtk  # here: the CSV readers do without python3-vtk9
+    import vtk  # here: the CSV readers do without python3-paraview
     reader = vtk.vtkXMLGenericDataObjectReader()
     reader.SetFileName(path)
     reader.Update()

@@ -21,7 +21,7 @@ membrane shows as a stair-stepped fringe inside the white outline.
 Right: the membranes coloured by the CO flux density λ into each cell
 (doc/diffusion.md), the paper's Fig. 4f. Both colour scales (viridis)
 start at 0: P and λ are ≥ 0, their small negative values are undershoot
-of the discretisation. Needs python3-vtk9 and python3-matplotlib
+of the discretisation. Needs python3-paraview and python3-matplotlib
 (`scripts/install-packages.sh --docs`).
 """
 import argparse

@@ -7,7 +7,7 @@ Top: the axial velocity on the mid-plane z = 0 of the capillary, with
 velocity arrows along three cross-sections: the Poiseuille parabola.
 Bottom: the plasma pressure on the same plane, falling linearly along the
 capillary (pN/µm² = Pa, doc/design.md), from 0 at the outlet. Both colour
-scales are viridis from 0. Needs python3-vtk9 and python3-matplotlib
+scales are viridis from 0. Needs python3-paraview and python3-matplotlib
 (`scripts/install-packages.sh --docs`).
 """
 import sys

@@ -9,7 +9,7 @@ clustered): left the rigid cells at t = 0, right the cells at the end of
 the run, each membrane coloured by the CO flux density λ into the cell
 (doc/diffusion.md), on one colour scale (viridis) from 0 and one scale of
 length for the whole picture. The view is from the side, the flow from
-left to right. Needs python3-vtk9 and python3-matplotlib
+left to right. Needs python3-paraview and python3-matplotlib
 (`scripts/install-packages.sh --docs`).
 """
 import sys

@@ -7,7 +7,7 @@ Shows the membranes in the capillary, each cell in one colour, dark to
 light in the order of their numbers (viridis: the colours tell the cells
 apart, they measure nothing), the back half of the diffusion
 mesh's vessel wall (red) and gas layer (blue), cut open, with its cells'
-edges, and the fluid mesh's wall as a light wireframe. Needs python3-vtk9,
+edges, and the fluid mesh's wall as a light wireframe. Needs python3-paraview,
 python3-matplotlib and, without a display, a virtual X server
 (`scripts/install-packages.sh --docs`).
 """

@@ -15,7 +15,7 @@ sizes compare. If the run solved the CO diffusion, PICTURE_flux.png next
 to it: the last membrane of diffusion_membranes.pvd seen obliquely from
 behind, coloured by the CO flux density λ into the cell (doc/diffusion.md;
 the scale starts at 0, λ's small negative values are undershoot), with
-arrows of the flux -λn (the paper's Fig. 4f). Needs python3-vtk9 and
+arrows of the flux -λn (the paper's Fig. 4f). Needs python3-paraview and
 python3-matplotlib (`scripts/install-packages.sh --docs`).
 """
 import os

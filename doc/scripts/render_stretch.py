@@ -7,7 +7,7 @@ Shows the equilibria N of stretch.pvd (default: the first, middle and last)
 seen obliquely from above, the beads pulling along x, coloured by the
 magnitude of the displacement from the reference shape, all on one scale
 of length (the 5 µm bar) and of colour (viridis, from 0). Needs
-python3-vtk9 and python3-matplotlib (`scripts/install-packages.sh --docs`).
+python3-paraview and python3-matplotlib (`scripts/install-packages.sh --docs`).
 """
 import sys
 

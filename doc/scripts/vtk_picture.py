@@ -1,6 +1,6 @@
 """What the doc/scripts/render_*.py scripts share: drawing rbc-ifem's fields with VTK
 and saving the view as a PNG, in one style. Reading the run's files is
-rbc_ifem_run's (read_dataset, Run.series). Needs python3-vtk9,
+rbc_ifem_run's (read_dataset, Run.series). Needs python3-paraview,
 python3-matplotlib (for its colour maps) and the DejaVu fonts
 (fonts-dejavu-core; `scripts/install-packages.sh --docs`).
 

@@ -82,6 +82,28 @@ namespace
     return range;
   }
 
+  /// The values at both ends of @p range, each with whether the range
+  /// allows it: a bound and the value a step beyond it.
+  std::vector<std::pair<double, bool>>
+  probes(const Range &range)
+  {
+    const double                         step = range.whole ? 1. : 1e-3;
+    std::vector<std::pair<double, bool>> values;
+    if (range.lower)
+      {
+        values.emplace_back(*range.lower, !range.strict_lower);
+        values.emplace_back(range.strict_lower ? *range.lower + step :
+                                                 *range.lower - step,
+                            range.strict_lower);
+      }
+    if (range.upper)
+      {
+        values.emplace_back(*range.upper, true);
+        values.emplace_back(*range.upper + step, false);
+      }
+    return values;
+  }
+
   /// @p value as --set gives it, repeated for a list.
   std::string
   value_text(const double value, const Range &range)
@@ -192,22 +214,7 @@ main(int argc, char **argv)
       ++n_ranges;
       const std::string experiment =
         owner.count(path) ? owner.at(path) : "flow";
-      const double step = range->whole ? 1. : 1e-3;
-      // (value, whether the text allows it)
-      std::vector<std::pair<double, bool>> probes;
-      if (range->lower)
-        {
-          probes.emplace_back(*range->lower, !range->strict_lower);
-          probes.emplace_back(range->strict_lower ? *range->lower + step :
-                                                    *range->lower - step,
-                              range->strict_lower);
-        }
-      if (range->upper)
-        {
-          probes.emplace_back(*range->upper, true);
-          probes.emplace_back(*range->upper + step, false);
-        }
-      for (const auto &[value, allows] : probes)
+      for (const auto &[value, allows] : probes(*range))
         {
           const std::string text = value_text(value, *range);
           const std::string why  = refusal(experiment, path + "=" + text);

@@ -100,18 +100,6 @@ def colours(n):
     return [colormaps["viridis"](i / (n - 1)) for i in range(n)]
 
 
-def mark_break(axes):
-    """Mark the y axis of AXES broken: it does not start at 0."""
-    if hasattr(plot_style, "mark_broken"):
-        plot_style.mark_broken(axes)
-        return
-    size = 0.012  # a plot_style without mark_broken: two strokes of our own
-    options = dict(transform=axes.transAxes, color="black", clip_on=False,
-                   linewidth=1.0)
-    for dy in (0.0, 0.022):
-        axes.plot((-size, size), (0.01 + dy - size, 0.01 + dy + size), **options)
-
-
 def set_y_range(axes, values, label, include=(0.0,)):
     """Let the y axis of AXES show zero (and INCLUDE) unless VALUES span so
     little of their magnitude that the change would not show; then zoom in
@@ -125,7 +113,7 @@ def set_y_range(axes, values, label, include=(0.0,)):
     if magnitude > 0 and (high - low) < ZOOM_BELOW * magnitude and low * high > 0:
         pad = 0.15 * (high - low) if high > low else 0.01 * magnitude
         axes.set_ylim(low - pad, high + 2 * pad)
-        mark_break(axes)
+        plot_style.mark_broken(axes)
         axes.set_ylabel(label + "\n(axis not from 0)")
     else:
         low, high = min([low] + list(include)), max([high] + list(include))

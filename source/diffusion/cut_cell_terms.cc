@@ -1,21 +1,66 @@
 #include <rbc_ifem/diffusion/cut_cell_terms.h>
 
+#include <cmath>
+
 namespace rbc_ifem
 {
+  namespace
+  {
+    /**
+     * matrix += X Yᵀ: each term below is a sum over quadrature points of
+     * products of per-shape numbers, so it is one product of an n × (numbers
+     * per point × points) table with another, rows contiguous; with X = Y
+     * only the upper half is summed. Four partial sums keep the multiply-
+     * adds independent. It replaced a triple loop over points and shape
+     * pairs through FEValues' accessors (and beats the reference BLAS's
+     * gemm at these sizes, 27 × 81).
+     */
+    void
+    add_product(const FullMatrix<double> &X,
+                const FullMatrix<double> &Y,
+                FullMatrix<double>       &matrix)
+    {
+      const unsigned int n = X.m(), length = X.n();
+      if (length == 0)
+        return;
+      const bool symmetric = &X == &Y;
+      for (unsigned int i = 0; i < n; ++i)
+        for (unsigned int j = symmetric ? i : 0; j < n; ++j)
+          {
+            const double *x = &X(i, 0), *y = &Y(j, 0);
+            double        sum[4] = {0., 0., 0., 0.};
+            unsigned int  c      = 0;
+            for (; c + 4 <= length; c += 4)
+              for (unsigned int l = 0; l < 4; ++l)
+                sum[l] += x[c + l] * y[c + l];
+            for (; c < length; ++c)
+              sum[0] += x[c] * y[c];
+            const double total = (sum[0] + sum[1]) + (sum[2] + sum[3]);
+            matrix(i, j) += total;
+            if (symmetric && j != i)
+              matrix(j, i) += total;
+          }
+    }
+  } // namespace
+
   void
   add_plasma_diffusion(const FEValues<3>   &plasma,
                        const double         permeability,
                        const CutCellShapes &shapes,
                        FullMatrix<double>  &matrix)
   {
+    // B(i, 3q + d) = √(αD JxW) ∂_d φ_i(x_q) on the plasma's shapes: B Bᵀ.
     const unsigned int n = shapes.side.size();
+    FullMatrix<double> B(n, 3 * plasma.n_quadrature_points);
     for (const unsigned int q : plasma.quadrature_point_indices())
-      for (unsigned int i = 0; i < n; ++i)
-        if (shapes.side[i] == 0)
-          for (unsigned int j = 0; j < n; ++j)
-            if (shapes.side[j] == 0)
-              matrix(i, j) += permeability * plasma.shape_grad(i, q) *
-                              plasma.shape_grad(j, q) * plasma.JxW(q);
+      {
+        const double w = std::sqrt(permeability * plasma.JxW(q));
+        for (unsigned int i = 0; i < n; ++i)
+          if (shapes.side[i] == 0)
+            for (unsigned int d = 0; d < 3; ++d)
+              B(i, 3 * q + d) = w * plasma.shape_grad(i, q)[d];
+      }
+    add_product(B, B, matrix);
   }
 
   void
@@ -25,17 +70,22 @@ namespace rbc_ifem
                          const CutCellShapes &shapes,
                          FullMatrix<double>  &matrix)
   {
+    // B(i, 4q + d) = √(α_cD_c JxW) ∂_d φ_i, B(i, 4q + 3) = √(k JxW) φ_i.
     const unsigned int n = shapes.side.size();
+    FullMatrix<double> B(n, 4 * cytoplasm.n_quadrature_points);
     for (const unsigned int q : cytoplasm.quadrature_point_indices())
-      for (unsigned int i = 0; i < n; ++i)
-        if (shapes.side[i] == 1)
-          for (unsigned int j = 0; j < n; ++j)
-            if (shapes.side[j] == 1)
-              matrix(i, j) += (permeability * cytoplasm.shape_grad(i, q) *
-                                 cytoplasm.shape_grad(j, q) +
-                               rate * cytoplasm.shape_value(i, q) *
-                                 cytoplasm.shape_value(j, q)) *
-                              cytoplasm.JxW(q);
+      {
+        const double w_grad  = std::sqrt(permeability * cytoplasm.JxW(q));
+        const double w_value = std::sqrt(rate * cytoplasm.JxW(q));
+        for (unsigned int i = 0; i < n; ++i)
+          if (shapes.side[i] == 1)
+            {
+              for (unsigned int d = 0; d < 3; ++d)
+                B(i, 4 * q + d) = w_grad * cytoplasm.shape_grad(i, q)[d];
+              B(i, 4 * q + 3) = w_value * cytoplasm.shape_value(i, q);
+            }
+      }
+    add_product(B, B, matrix);
   }
 
   void
@@ -44,29 +94,29 @@ namespace rbc_ifem
                         const CutCellShapes                           &shapes,
                         FullMatrix<double>                            &matrix)
   {
+    // With F(i, q) = √JxW {αD ∂ₙφ_i} and J(i, q) = √JxW [φ_i], the terms
+    // are (β J − F) Jᵀ − J Fᵀ.
     const unsigned int n        = shapes.side.size();
+    const unsigned int n_q      = membrane.n_quadrature_points;
     const double flux_weight[2] = {coupling.plasma_flux, coupling.cell_flux};
-    std::vector<double> flux(n), jump(n);
+    FullMatrix<double> F(n, n_q), J(n, n_q);
     for (const unsigned int q : membrane.quadrature_point_indices())
       {
-        // {αD ∂ₙφ_i} and [φ_i], once per shape function.
+        const double        w      = std::sqrt(membrane.JxW(q));
         const Tensor<1, 3> &normal = membrane.normal_vector(q);
         for (unsigned int i = 0; i < n; ++i)
           if (shapes.side[i] >= 0)
             {
-              flux[i] = flux_weight[shapes.side[i]] *
+              F(i, q) = w * flux_weight[shapes.side[i]] *
                         (normal * membrane.shape_grad(i, q));
-              jump[i] = shapes.jump_sign[i] * membrane.shape_value(i, q);
+              J(i, q) = w * shapes.jump_sign[i] * membrane.shape_value(i, q);
             }
-          else
-            flux[i] = jump[i] = 0.;
-        const double JxW = membrane.JxW(q);
-        for (unsigned int i = 0; i < n; ++i)
-          for (unsigned int j = 0; j < n; ++j)
-            matrix(i, j) += (-flux[i] * jump[j] - flux[j] * jump[i] +
-                             coupling.penalty * jump[i] * jump[j]) *
-                            JxW;
       }
+    FullMatrix<double> penalised_minus_flux(n, n_q);
+    penalised_minus_flux.add(coupling.penalty, J, -1., F);
+    add_product(penalised_minus_flux, J, matrix);
+    F *= -1.;
+    add_product(J, F, matrix);
   }
 
   void
@@ -77,26 +127,23 @@ namespace rbc_ifem
                     const unsigned int          degree,
                     FullMatrix<double>         &matrix)
   {
-    const unsigned int  n     = face.n_current_interface_dofs();
-    const auto          jumps = face[FEValuesExtractors::Scalar(field)];
-    std::vector<double> first(n), second(n);
+    // B(i, 2q) = √w₁ [∂ₙφ_i], B(i, 2q + 1) = √w₂ [∂ₙₙφ_i]: B Bᵀ.
+    const unsigned int n     = face.n_current_interface_dofs();
+    const auto         jumps = face[FEValuesExtractors::Scalar(field)];
+    FullMatrix<double> B(n, 2 * face.n_quadrature_points);
     for (const unsigned int q : face.quadrature_point_indices())
       {
-        // The jumps of ∂ₙφ_i and ∂ₙₙφ_i, once per shape function.
         const Tensor<1, 3> &normal = face.normal(q);
+        const double        w1     = std::sqrt(weight * h * face.JxW(q));
+        const double        w2 = std::sqrt(weight * h * h * h * face.JxW(q));
         for (unsigned int i = 0; i < n; ++i)
           {
-            first[i]  = normal * jumps.jump_in_gradients(i, q);
-            second[i] = degree > 1 ?
-                          normal * (jumps.jump_in_hessians(i, q) * normal) :
-                          0.;
+            B(i, 2 * q) = w1 * (normal * jumps.jump_in_gradients(i, q));
+            if (degree > 1)
+              B(i, 2 * q + 1) =
+                w2 * (normal * (jumps.jump_in_hessians(i, q) * normal));
           }
-        const double w1 = weight * h * face.JxW(q);
-        const double w2 = weight * h * h * h * face.JxW(q);
-        for (unsigned int i = 0; i < n; ++i)
-          for (unsigned int j = 0; j < n; ++j)
-            matrix(i, j) +=
-              w1 * first[i] * first[j] + w2 * second[i] * second[j];
       }
+    add_product(B, B, matrix);
   }
 } // namespace rbc_ifem

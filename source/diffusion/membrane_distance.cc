@@ -27,6 +27,10 @@ namespace rbc_ifem
     /// Nearest samples whose patches are tried for each query.
     constexpr unsigned int n_candidates = 8;
 
+    /// Two closest points closer than this are a tie, which the better
+    /// aligned one wins [µm]; far below any mesh size.
+    constexpr double tie = 1e-8;
+
     /// The signed solid angle of the triangle a, b, c (its vertices seen
     /// from the viewpoint), positive when its normal (b - a) × (c - a)
     /// points away from the viewpoint.
@@ -147,6 +151,42 @@ namespace rbc_ifem
             sample_xi.push_back(xi);
           }
     tree = std::make_unique<Tree>(samples);
+    find_sample_box(n_s * n_s);
+  }
+
+  void
+  MembraneDistance::find_sample_box(const unsigned int samples_per_patch)
+  {
+    if (samples.empty())
+      return;
+    sample_box = {samples.front(), samples.front()};
+    for (std::size_t first = 0; first < samples.size();
+         first += samples_per_patch)
+      {
+        Point<3> lower = samples[first], upper = samples[first];
+        for (std::size_t k = first; k < first + samples_per_patch; ++k)
+          for (unsigned int d = 0; d < 3; ++d)
+            {
+              lower[d] = std::min(lower[d], samples[k][d]);
+              upper[d] = std::max(upper[d], samples[k][d]);
+            }
+        sample_margin = std::max(sample_margin, lower.distance(upper));
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            sample_box.first[d]  = std::min(sample_box.first[d], lower[d]);
+            sample_box.second[d] = std::max(sample_box.second[d], upper[d]);
+          }
+      }
+  }
+
+  double
+  MembraneDistance::distance_bound(const Point<3> &x) const
+  {
+    Tensor<1, 3> outside;
+    for (unsigned int d = 0; d < 3; ++d)
+      outside[d] =
+        std::max({sample_box.first[d] - x[d], x[d] - sample_box.second[d], 0.});
+    return outside.norm() - sample_margin;
   }
 
   void
@@ -342,7 +382,6 @@ namespace rbc_ifem
                                      std::vector<unsigned int> &tried,
                                      Candidate                 &best) const
   {
-    constexpr double         tie = 1e-8; // [µm], far below any mesh size
     std::vector<std::size_t> nearest;
     tree->rtree.query(boost::geometry::index::nearest(around, n_candidates),
                       std::back_inserter(nearest));
@@ -386,7 +425,12 @@ namespace rbc_ifem
     best.point.signed_distance = std::numeric_limits<double>::infinity();
     std::vector<std::vector<unsigned int>> tried(images.size());
     for (unsigned int i = 0; i < images.size(); ++i)
-      try_patches_near(images[i], images[i], tried[i], best);
+      // An image that cannot come within the tie of the best so far is
+      // not tried: the answer is the same, and in a periodic segment most
+      // points' images are a period away from every membrane.
+      if (distance_bound(images[i]) <=
+          std::abs(best.point.signed_distance) + tie)
+        try_patches_near(images[i], images[i], tried[i], best);
 
     // The side of x: from the normal at the closest point F, which is exact
     // where F lies inside a patch (x - F is then along the normal). Where F

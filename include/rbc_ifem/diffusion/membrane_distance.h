@@ -166,6 +166,21 @@ namespace rbc_ifem
     struct Tree;
     std::unique_ptr<Tree> tree;
     std::optional<double> period;
+    /// The box around every sample, and how far a point of a patch can be
+    /// from its samples at most (the longest diagonal of a patch's box of
+    /// samples): a lower bound on the distance from any point to the
+    /// membranes, which rules out periodic images far from them.
+    std::pair<Point<3>, Point<3>> sample_box;
+    double                        sample_margin = 0.;
+
+    /// A lower bound on the distance from @p x to every membrane.
+    double
+    distance_bound(const Point<3> &x) const;
+
+    /// Set sample_box and sample_margin from the samples, which come in
+    /// blocks of @p samples_per_patch per patch.
+    void
+    find_sample_box(const unsigned int samples_per_patch);
 
     /// The bits of a point's coordinates: exact equality, hashed.
     struct PointHash

@@ -107,14 +107,14 @@ namespace rbc_ifem
       method,
       method_names(),
       "How P = 0 is imposed on the membranes, which cut through the "
-      "diffusion mesh. Lagrange multiplier (the paper's kind of method): a "
-      "multiplier on each membrane, the flux is its value; DM converges at "
-      "order ~1, the membranes must be about twice as coarse as the mesh "
-      "around them. cut cell: the plasma is the part of the mesh outside a "
+      "diffusion mesh. cut cell (the default): the plasma is the part of the mesh outside a "
       "level set of the membranes (their signed distance), P = 0 is imposed "
       "by Nitsche's method on the cut cells, stabilised by a ghost penalty; "
       "DM converges at order >= 2 and the membranes may be as fine as "
-      "wanted. See doc/diffusion.md.");
+      "wanted. Lagrange multiplier (the paper's kind of method, kept for "
+      "comparison): a multiplier on each membrane, the flux is its value; "
+      "DM converges at order ~1, the membranes must be about twice as "
+      "coarse as the mesh around them. See doc/diffusion.md.");
     add_parameter(prm,
                   "Finite element degree",
                   degree,

@@ -84,11 +84,14 @@ namespace rbc_ifem
                   "Diffusion band refinements",
                   diffusion_band_refinements,
                   "Further refinements of the diffusion mesh in a band "
-                  "around the cell membranes. The mesh there must be about "
-                  "as fine as the membranes or finer; CO fluxes are "
-                  "smoothest with membrane cells about twice the size of "
-                  "the mesh cells (with 1 global refinement: band "
-                  "refinements = Cells/Surface refinements).",
+                  "around the cell membranes. Cut cells (Diffusion/Method, "
+                  "the default): 1, with degree 2, is the default mesh (its "
+                  "error: doc/diffusion.md, Mesh convergence). Lagrange "
+                  "multiplier: the mesh there must be about as fine as the "
+                  "membranes or finer; CO fluxes are smoothest with "
+                  "membrane cells about twice the size of the mesh cells "
+                  "(with 1 global refinement: band refinements = "
+                  "Cells/Surface refinements).",
                   Patterns::Integer(0, 5));
     add_parameter(prm,
                   "Diffusion gap refinements",

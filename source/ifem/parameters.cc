@@ -107,20 +107,22 @@ namespace rbc_ifem
                   "its start value) becomes the cells' mean velocity along "
                   "x, so a cell stays in the short segment. false keeps "
                   "Fluid/Frame velocity.");
-    add_selection(prm,
-                  "Coupling",
-                  coupling,
-                  coupling_scheme_names(),
-                  "How the membrane forces enter the fluid step. explicit "
-                  "(the paper's): the forces at the step's start, so Δt "
-                  "must stay below the stability limit the run prints, "
-                  "which falls with the membrane stiffness. semi-implicit: "
-                  "the forces at its end, linearised with the membranes' "
-                  "exact tangent stiffness K, so the fluid operator gains "
-                  "Δt Sᵀ K S (S interpolates at the membrane points) and "
-                  "stays stable at many times the limit; each FGMRES "
-                  "iteration then also interpolates, applies K and spreads "
-                  "(doc/ifem.md).");
+    add_selection(
+      prm,
+      "Coupling",
+      coupling,
+      coupling_scheme_names(),
+      "How the membrane forces enter the fluid step. "
+      "semi-implicit (the default, the faster): the forces at "
+      "its end, linearised with the membranes' "
+      "exact tangent stiffness K, so the fluid operator gains "
+      "Δt Sᵀ K S (S interpolates at the membrane points) and "
+      "stays stable at many times the explicit scheme's limit; each FGMRES "
+      "iteration then also interpolates, applies K and spreads. "
+      "explicit (the paper's, kept for comparison): the forces "
+      "at the step's start, so Δt must stay below the stability "
+      "limit the run prints, which falls with the membrane "
+      "stiffness (doc/ifem.md).");
   }
 
   void

@@ -89,19 +89,23 @@ namespace rbc_ifem
       pcout << "  WARNING: Cell interactions/Repulsion range = "
             << contact.repulsion_range
             << " µm is shorter than the membrane point spacing " << spacing
-            << " µm: a point of one cell may slip between the points of "
-               "another. Raise the range or Cells/Surface refinements."
-            << std::endl;
+            << " µm: where two membranes come closer than the spacing, a "
+               "point of one may pass between the points of the other. Fine "
+               "while the cells stay farther apart (cells.csv, min_gap): a "
+               "membrane that crosses another stops the run, which says so. "
+               "For cells pressed together, raise the range to at least "
+            << spacing << " µm." << std::endl;
     if (spacing > 0.5 * mesh_size)
-      pcout
-        << "  WARNING: the membrane point spacing " << spacing
-        << " µm exceeds half the fluid mesh size at the cells, h/2 = "
-        << 0.5 * mesh_size
-        << " µm (the paper's rule). To follow it, raise Cells/Surface "
-           "refinements and Mesh/Diffusion band refinements by one each and "
-           "set Time/Time step = auto (closer points lower the explicit-"
-           "coupling estimate), or lower Mesh/Fluid band refinements."
-        << std::endl;
+      pcout << "  WARNING: the membrane point spacing " << spacing
+            << " µm exceeds half the fluid mesh size at the cells, h/2 = "
+            << 0.5 * mesh_size
+            << " µm (the paper's rule, against plasma leaking through the "
+               "membrane). A leak shows as a change of a cell's volume, which "
+               "the run watches (it stops above Immersed cells/Maximum volume "
+               "change) and prints: fine if the volume change at the end "
+               "stays well below 1%; if not, raise Cells/Surface refinements "
+               "by one."
+            << std::endl;
   }
 
   void

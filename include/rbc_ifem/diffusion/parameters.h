@@ -51,19 +51,19 @@ namespace rbc_ifem
 
   struct DiffusionParameters
   {
-    DiffusionMethod method             = DiffusionMethod::lagrange_multiplier;
-    double          alveolar_pressure  = 1.;       ///< P_A [Torr]
-    double          plasma_diffusivity = 2.453e3;  ///< D [µm²/s]
-    double          plasma_solubility  = 2.363e-5; ///< α [Torr⁻¹]
-    double          wall_diffusivity   = 2.453e3;  ///< D [µm²/s]
-    double          wall_solubility    = 2.363e-5; ///< α [Torr⁻¹]
-    double          gas_diffusivity    = 2.413e7;  ///< D [µm²/s]
-    double          gas_solubility     = 1.159e-3; ///< α [Torr⁻¹]
-    unsigned int    degree             = 1;        ///< of FE_Q<3> for P
-    double          augmentation       = 30.;      ///< γ, dimensionless
-    double          nitsche_penalty    = 5.;       ///< × k(k+1), dimensionless
-    double          ghost_penalty      = 0.01;     ///< dimensionless
-    double          linear_tolerance   = 1e-8;     ///< relative, FGMRES
+    DiffusionMethod method                = DiffusionMethod::cut_cell;
+    double          alveolar_pressure     = 1.;       ///< P_A [Torr]
+    double          plasma_diffusivity    = 2.453e3;  ///< D [µm²/s]
+    double          plasma_solubility     = 2.363e-5; ///< α [Torr⁻¹]
+    double          wall_diffusivity      = 2.453e3;  ///< D [µm²/s]
+    double          wall_solubility       = 2.363e-5; ///< α [Torr⁻¹]
+    double          gas_diffusivity       = 2.413e7;  ///< D [µm²/s]
+    double          gas_solubility        = 1.159e-3; ///< α [Torr⁻¹]
+    unsigned int    degree                = 2;        ///< of FE_Q<3> for P
+    double          augmentation          = 30.;      ///< γ, dimensionless
+    double          nitsche_penalty       = 5.;   ///< × k(k+1), dimensionless
+    double          ghost_penalty         = 0.01; ///< dimensionless
+    double          linear_tolerance      = 1e-8; ///< relative, FGMRES
     unsigned int    max_linear_iterations = 1000;
     CellUptake      uptake                = CellUptake::membrane_sink;
     double          cytoplasm_diffusivity = 7.0e2;    ///< D [µm²/s]

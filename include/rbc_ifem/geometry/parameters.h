@@ -46,7 +46,7 @@ namespace rbc_ifem
     unsigned int fluid_global_refinements     = 1;
     unsigned int fluid_band_refinements       = 1;
     unsigned int diffusion_global_refinements = 1;
-    unsigned int diffusion_band_refinements   = 3;
+    unsigned int diffusion_band_refinements   = 1;
     double       band_width                   = 0.5; ///< [µm]
     /// Diffusion/Method = cut cell: refinements where two membranes share
     /// a cell of the diffusion mesh.

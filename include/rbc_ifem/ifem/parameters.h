@@ -70,7 +70,7 @@ namespace rbc_ifem
   {
     bool enabled      = false; ///< carry the cells of subsection Layout
     bool follow_cells = true;  ///< frame velocity = the cells' mean velocity
-    CouplingScheme coupling         = CouplingScheme::explicit_forces;
+    CouplingScheme coupling         = CouplingScheme::semi_implicit;
     unsigned int diffusion_interval = 0; ///< DM every this many steps; 0: never
     unsigned int checkpoint_interval = 0; ///< 0: never
     bool         resume = false; ///< from Output directory/checkpoint.bin

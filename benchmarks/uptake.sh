@@ -42,8 +42,9 @@ solve() {
 }
 seconds() { awk -F, -v s="\"$2\"" '$1 == s { t += $3 } END { printf "%.3f", t }' "$1/timing.csv"; }
 # The sections that hold the others (the level set and the surface points
-# are in setup, the AMG setup in assemble), without the output.
-top_sections='"diffusion mesh"|"diffusion: setup"|"diffusion: membrane sampling"|"diffusion: DoFs and constraints"|"diffusion: sparsity"|"diffusion: assemble"|"diffusion: solve"'
+# are in setup, the sparsity in DoFs and constraints, the AMG setup in
+# assemble), without the output.
+top_sections='"diffusion mesh"|"diffusion: setup"|"diffusion: membrane sampling"|"diffusion: DoFs and constraints"|"diffusion: assemble"|"diffusion: solve"'
 total() { awk -F, -v s="$top_sections" '$1 ~ s { t += $3 } END { printf "%.3f", t }' "$1/timing.csv"; }
 
 cut_cells=("Diffusion/Method=cut cell" "Diffusion/Finite element degree=2" "Mesh/Diffusion band refinements=1")

@@ -10,8 +10,9 @@
  * (UptakeMesh with the cut cells' resolution checks, CutCellGeometry), and
  * then solves -ΔP = 1 with P = 0 on the alveolar surface (P periodic
  * between the ends of a periodic segment) in FE_Q(Diffusion/Finite element
- * degree), with the AMG settings, the diagonal scaling and the CG tolerance
- * of the cut-cell solve. It prints one line,
+ * degree), with the AMG, the diagonal scaling and the CG tolerance of the
+ * cut-cell solve (initialize_uptake_amg(), solve_scaled_cg()). It prints one
+ * line,
  *
  *   reference: DOFS dofs, ITERATIONS iterations, dofs S, sparsity S,
  *   assemble S, amg S, solve S, total S
@@ -22,9 +23,9 @@
  */
 
 #include <rbc_ifem/diffusion/cut_cell_geometry.h>
-#include <rbc_ifem/diffusion/diagonally_scaled.h>
 #include <rbc_ifem/diffusion/end_periodicity.h>
 #include <rbc_ifem/diffusion/membrane_distance.h>
+#include <rbc_ifem/diffusion/scaled_amg_solve.h>
 #include <rbc_ifem/diffusion/uptake_mesh.h>
 #include <rbc_ifem/geometry/capillary_mesh.h>
 #include <rbc_ifem/geometry/placed_cells.h>
@@ -39,7 +40,6 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
-#include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
@@ -186,46 +186,21 @@ namespace
       rhs.compress(VectorOperation::add);
     }
 
-    /// The cut-cell solve's ML settings
-    /// (CutCellProblem::build_preconditioner()).
+    /// The cut-cell solve's AMG (initialize_uptake_amg()).
     void
     build_preconditioner()
     {
-      TrilinosWrappers::PreconditionAMG::AdditionalData data;
-      data.elliptic              = true;
-      data.higher_order_elements = fe.degree > 1;
-      data.smoother_sweeps       = 2;
-      data.aggregation_threshold = 0.02;
-      Teuchos::ParameterList              ml_parameters;
-      std::unique_ptr<Epetra_MultiVector> constant_modes;
-      data.set_parameters(ml_parameters, constant_modes, matrix);
-      ml_parameters.set("coarse: max size", 500);
-      amg.initialize(matrix, ml_parameters);
+      initialize_uptake_amg(amg, matrix, fe.degree);
     }
 
-    /// CG with the cut-cell solve's scaling and tolerance; its iterations.
+    /// The cut-cell solve's scaled CG and tolerance; its iterations.
     unsigned int
     solve()
     {
-      Vector scale(rhs), inverse_scale(rhs);
-      for (const auto i : owned)
-        {
-          scale[i]         = 1. / std::sqrt(matrix.diag_element(i));
-          inverse_scale[i] = 1. / scale[i];
-        }
-      scale.compress(VectorOperation::insert);
-      inverse_scale.compress(VectorOperation::insert);
-      Vector scaled_rhs(rhs), x(rhs);
-      scaled_rhs.scale(scale);
-      x = 0.;
-      SolverControl    control(diffusion.max_linear_iterations,
-                            diffusion.linear_tolerance * scaled_rhs.l2_norm());
-      SolverCG<Vector> cg(control);
-      cg.solve(DiagonallyScaled<Matrix, Vector>(matrix, scale),
-               x,
-               scaled_rhs,
-               DiagonallyScaled<TrilinosWrappers::PreconditionAMG, Vector>(
-                 amg, inverse_scale));
+      Vector        x;
+      SolverControl control(diffusion.max_linear_iterations,
+                            diffusion.linear_tolerance);
+      solve_scaled_cg(matrix, amg, owned, rhs, x, control);
       return control.last_step();
     }
 

@@ -1,7 +1,7 @@
 #include <rbc_ifem/base/output.h>
 #include <rbc_ifem/base/solver_failure.h>
 #include <rbc_ifem/diffusion/cut_cell_problem.h>
-#include <rbc_ifem/diffusion/diagonally_scaled.h>
+#include <rbc_ifem/diffusion/scaled_amg_solve.h>
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_tools.h>
@@ -11,13 +11,9 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/la_parallel_vector.h>
-#include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/trilinos_index_access.h>
-
-#include <Epetra_MultiVector.h>
-#include <Teuchos_ParameterList.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -226,21 +222,7 @@ namespace rbc_ifem
   CutCellProblem::build_preconditioner()
   {
     TimerOutput::Scope scope(timer, "diffusion: AMG setup");
-    TrilinosWrappers::PreconditionAMG::AdditionalData amg_data;
-    amg_data.elliptic              = true;
-    amg_data.higher_order_elements = parameters.degree > 1;
-    amg_data.smoother_sweeps       = 2;
-    amg_data.aggregation_threshold = 0.02;
-    // The coarsest level (deal.II's set_parameters() asks ML for at most
-    // 2000 rows) is factorised by KLU at every setup and solved at every
-    // V-cycle; coarsening on to 500 rows is cheaper than both, and the
-    // seven-cell solve's setup and solve together take a quarter less
-    // (43 CG iterations instead of 42, doc/diffusion.md).
-    Teuchos::ParameterList              ml_parameters;
-    std::unique_ptr<Epetra_MultiVector> constant_modes;
-    amg_data.set_parameters(ml_parameters, constant_modes, matrix);
-    ml_parameters.set("coarse: max size", 500);
-    amg.initialize(matrix, ml_parameters);
+    initialize_uptake_amg(amg, matrix, parameters.degree);
   }
 
   void
@@ -374,32 +356,13 @@ namespace rbc_ifem
   void
   CutCellProblem::solve()
   {
-    TimerOutput::Scope scope(timer, "diffusion: solve");
-    // D = diag(A)^-1/2: every row O(1) on the diagonal.
-    TrilinosWrappers::MPI::Vector scale(rhs), inverse_scale(rhs);
-    for (const auto i : owned_dofs)
-      {
-        scale[i]         = 1. / std::sqrt(matrix.diag_element(i));
-        inverse_scale[i] = 1. / scale[i];
-      }
-    scale.compress(VectorOperation::insert);
-    inverse_scale.compress(VectorOperation::insert);
-
-    TrilinosWrappers::MPI::Vector scaled_rhs(rhs), x(rhs);
-    scaled_rhs.scale(scale);
-    x = 0.;
-    SolverControl control(parameters.max_linear_iterations,
-                          parameters.linear_tolerance * scaled_rhs.l2_norm());
-    SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+    TimerOutput::Scope            scope(timer, "diffusion: solve");
+    TrilinosWrappers::MPI::Vector x;
+    SolverControl                 control(parameters.max_linear_iterations,
+                          parameters.linear_tolerance);
     try
       {
-        cg.solve(
-          DiagonallyScaled<TrilinosWrappers::SparseMatrix,
-                           TrilinosWrappers::MPI::Vector>(matrix, scale),
-          x,
-          scaled_rhs,
-          DiagonallyScaled<TrilinosWrappers::PreconditionAMG,
-                           TrilinosWrappers::MPI::Vector>(amg, inverse_scale));
+        solve_scaled_cg(matrix, amg, owned_dofs, rhs, x, control);
       }
     catch (const SolverControl::NoConvergence &e)
       {
@@ -409,7 +372,6 @@ namespace rbc_ifem
                              "Raise Diffusion/Max linear iterations, or "
                              "Diffusion/Ghost penalty.");
       }
-    x.scale(scale);
     iterations = control.last_step();
     if (!std::isfinite(x.l2_norm()))
       throw SolverFailure("CO diffusion: the solution is not finite.");

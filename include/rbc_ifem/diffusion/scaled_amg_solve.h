@@ -1,0 +1,45 @@
+#ifndef rbc_ifem_diffusion_scaled_amg_solve_h
+#define rbc_ifem_diffusion_scaled_amg_solve_h
+
+#include <deal.II/base/index_set.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+namespace rbc_ifem
+{
+  using namespace dealii;
+
+  /**
+   * The ML AMG of the cut-cell uptake solves (CutCellProblem), on
+   * @p matrix of finite elements of degree @p degree: for an elliptic
+   * problem, two smoothing sweeps, aggregation threshold 0.02, and the
+   * coarsest level at most 500 rows. benchmarks/poisson_reference takes
+   * the same, so that its yardstick is the same solver.
+   */
+  void
+  initialize_uptake_amg(TrilinosWrappers::PreconditionAMG    &amg,
+                        const TrilinosWrappers::SparseMatrix &matrix,
+                        const unsigned int                    degree);
+
+  /**
+   * Solve @p matrix x = @p rhs by CG on the symmetrically Jacobi-scaled
+   * system D K D (D⁻¹ x) = D b, D = diag(K)^(-1/2) (DiagonallyScaled:
+   * every row weighs alike, whatever its material's αD), preconditioned by
+   * @p amg seen through the same scaling. @p control comes with its
+   * tolerance relative to |D b|, which is made absolute here (what a
+   * NoConvergence then reports). @p x: the solution, in the layout of
+   * @p rhs (without ghosts). SolverControl::NoConvergence if the
+   * iterations run out.
+   */
+  void
+  solve_scaled_cg(const TrilinosWrappers::SparseMatrix    &matrix,
+                  const TrilinosWrappers::PreconditionAMG &amg,
+                  const IndexSet                          &owned_dofs,
+                  const TrilinosWrappers::MPI::Vector     &rhs,
+                  TrilinosWrappers::MPI::Vector           &x,
+                  SolverControl                           &control);
+} // namespace rbc_ifem
+
+#endif

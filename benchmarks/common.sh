@@ -75,6 +75,23 @@ results_row() {
   markdown_row "$@"
 }
 
+# section_seconds DIR SECTION: the seconds of the TimerOutput SECTION in
+# DIR/timing.csv (0.000 if the run has none).
+section_seconds() { awk -F, -v s="\"$2\"" '$1 == s { t += $3 } END { printf "%.3f", t }' "$1/timing.csv"; }
+
+# The sections of a DM solve that hold the others (the level set and the
+# surface points are in setup, the sparsity in DoFs and constraints, the
+# AMG setup in assemble), without the output.
+uptake_sections='"diffusion mesh"|"diffusion: setup"|"diffusion: membrane sampling"|"diffusion: DoFs and constraints"|"diffusion: assemble"|"diffusion: solve"'
+# uptake_seconds DIR [EXTRA]: the seconds of the DM solves of DIR/timing.csv,
+# their output aside; EXTRA (a regular expression of quoted section names,
+# e.g. '"diffusion: output"') adds those sections.
+uptake_seconds() {
+  local sections=$uptake_sections
+  [ -n "${2:-}" ] && sections+="|$2"
+  awk -F, -v s="$sections" '$1 ~ s { t += $3 } END { printf "%.3f", t }' "$1/timing.csv"
+}
+
 # Haberman & Sayre (1958) for a rigid sphere of radius λR on the axis of a
 # tube of radius R, as awk functions: the free sphere's velocity over the
 # centre-line velocity in Poiseuille flow, and the drag factor K of a sphere

@@ -37,15 +37,9 @@ solve() {
     mpirun -np "$ranks" "$program" "$here/prm/default.prm" --set "Experiment=diffusion" \
       --set "Output directory=$name.$run" "${sets[@]}" >"$name.$run.log"
   done
-  best=$(for run in 1 2 3; do echo "$(total "$name.$run") $run"; done | sort -g | head -1 | cut -d' ' -f2)
+  best=$(for run in 1 2 3; do echo "$(uptake_seconds "$name.$run") $run"; done | sort -g | head -1 | cut -d' ' -f2)
   cp -r "$name.$best" "$name"
 }
-seconds() { awk -F, -v s="\"$2\"" '$1 == s { t += $3 } END { printf "%.3f", t }' "$1/timing.csv"; }
-# The sections that hold the others (the level set and the surface points
-# are in setup, the sparsity in DoFs and constraints, the AMG setup in
-# assemble), without the output.
-top_sections='"diffusion mesh"|"diffusion: setup"|"diffusion: membrane sampling"|"diffusion: DoFs and constraints"|"diffusion: assemble"|"diffusion: solve"'
-total() { awk -F, -v s="$top_sections" '$1 ~ s { t += $3 } END { printf "%.3f", t }' "$1/timing.csv"; }
 
 cut_cells=("Diffusion/Method=cut cell" "Diffusion/Finite element degree=2" "Mesh/Diffusion band refinements=1")
 seven=("Geometry/Periodic=true" "Layout/Number of cells=7")
@@ -57,11 +51,11 @@ compare() {
   solve before "$before" "${cut_cells[@]}" "$@"
   solve after "$exe" "${cut_cells[@]}" "$@"
   for phase in "${phases[@]}"; do
-    b=$(seconds before "$phase") a=$(seconds after "$phase")
+    b=$(section_seconds before "$phase") a=$(section_seconds after "$phase")
     results_row "$ranks" "$label" "${phase#diffusion: }" "$b" "$a" \
       "$(awk -v a="$a" -v b="$b" 'BEGIN { printf "%.2f", (b > 0 ? a / b : 0) }')"
   done
-  b=$(total before) a=$(total after)
+  b=$(uptake_seconds before) a=$(uptake_seconds after)
   results_row "$ranks" "$label" "whole solve" "$b" "$a" "$(awk -v a="$a" -v b="$b" 'BEGIN { printf "%.2f", a / b }')"
   if cmp -s before/dm.csv after/dm.csv; then
     same="the same to the last digit"
@@ -85,12 +79,12 @@ for program in before after; do
   mpirun -np "$ranks" "$p" "$here/prm/default.prm" --set "Output directory=$program" >"$program.log"
 done
 wall() { sed -n 's/.* steps in \(.*\), .* s per step$/\1/p' "$1.log" | awk '{ t = 0; for (i = 1; i <= NF; i += 2) t += $i * ($(i + 1) == "min" ? 60 : 1); printf "%.1f", t }'; }
-diffusion() { awk -F, -v s="$top_sections|\"diffusion: output\"" '$1 ~ s { t += $3 } END { printf "%.2f", t }' "$1/timing.csv"; }
+diffusion() { printf '%.2f' "$(uptake_seconds "$1" '"diffusion: output"')"; }
 instants() { awk 'END { print NR - 1 }' "$1/dm.csv"; }
 ratio() { awk -v a="$2" -v b="$1" 'BEGIN { printf "%.2f", a / b }'; }
 b=$(wall before) a=$(wall after)
 results_row "$ranks" "wall [s]" "$b" "$a" "$(ratio "$b" "$a")"
-b=$(seconds before "fluid: solve") a=$(seconds after "fluid: solve")
+b=$(section_seconds before "fluid: solve") a=$(section_seconds after "fluid: solve")
 results_row "$ranks" "fluid solve [s]" "$b" "$a" "$(ratio "$b" "$a")"
 b=$(diffusion before) a=$(diffusion after)
 results_row "$ranks" "DM solves with their output, start-up check aside [s]" "$b" "$a" "$(ratio "$b" "$a")"

@@ -36,16 +36,8 @@ case_prm() {
   shift
   { cat "$here/prm/default.prm"
     echo "set Experiment = diffusion"
-    echo "set Output directory = $name.out"
     printf '%s\n' "$@"
   } >"$name.prm"
-}
-# seconds DIR SECTION: the seconds of SECTION in DIR/timing.csv.
-seconds() { awk -F, -v s="\"$2\"" '$1 == s { t += $3 } END { printf "%.3f", t }' "$1/timing.csv"; }
-# The DM solve without its output; the level set and the surface points are
-# in setup, the sparsity in DoFs and constraints, the AMG setup in assemble.
-dm_total() {
-  awk -F, '$1 ~ /"diffusion mesh"|"diffusion: setup"|"diffusion: membrane sampling"|"diffusion: DoFs and constraints"|"diffusion: assemble"|"diffusion: solve"/ { t += $3 } END { printf "%.3f", t }' "$1/timing.csv"
 }
 # field LOG NAME: the seconds after NAME in the reference's line in LOG.
 field() { sed -n "s/.* $2 \([0-9.e+-]*\) s.*/\1/p" "$1"; }
@@ -60,7 +52,7 @@ compare() {
     mpirun -np "$ranks" "$exe" case.prm --set "Output directory=dm.$run" >"dm.$run.log" 2>"dm.$run.err"
     mpirun -np "$ranks" reference-build/poisson_reference case.prm >"ref.$run.log"
   done
-  best=$(for run in 1 2 3; do echo "$(dm_total "dm.$run") $run"; done | sort -g | head -1 | cut -d' ' -f2)
+  best=$(for run in 1 2 3; do echo "$(uptake_seconds "dm.$run") $run"; done | sort -g | head -1 | cut -d' ' -f2)
   mv "dm.$best" "dm_$label"
   mv "dm.$best.log" "dm_$label.log"
   best=$(for run in 1 2 3; do echo "$(field "ref.$run.log" total) $run"; done | sort -g | head -1 | cut -d' ' -f2)
@@ -72,18 +64,18 @@ compare() {
 dm_phase() {
   local d=$1
   case $2 in
-    "level set") seconds "$d" "diffusion: level set" ;;
-    "surface points") seconds "$d" "diffusion: surface points" ;;
-    "other cut-cell setup") awk -v a="$(seconds "$d" "diffusion: setup")" -v b="$(seconds "$d" "diffusion: level set")" \
-      -v c="$(seconds "$d" "diffusion: surface points")" 'BEGIN { printf "%.3f", a - b - c }' ;;
-    dofs) awk -v a="$(seconds "$d" "diffusion: DoFs and constraints")" -v b="$(seconds "$d" "diffusion: sparsity")" \
+    "level set") section_seconds "$d" "diffusion: level set" ;;
+    "surface points") section_seconds "$d" "diffusion: surface points" ;;
+    "other cut-cell setup") awk -v a="$(section_seconds "$d" "diffusion: setup")" -v b="$(section_seconds "$d" "diffusion: level set")" \
+      -v c="$(section_seconds "$d" "diffusion: surface points")" 'BEGIN { printf "%.3f", a - b - c }' ;;
+    dofs) awk -v a="$(section_seconds "$d" "diffusion: DoFs and constraints")" -v b="$(section_seconds "$d" "diffusion: sparsity")" \
       'BEGIN { printf "%.3f", a - b }' ;;
-    sparsity) seconds "$d" "diffusion: sparsity" ;;
-    assemble) awk -v a="$(seconds "$d" "diffusion: assemble")" -v b="$(seconds "$d" "diffusion: AMG setup")" \
+    sparsity) section_seconds "$d" "diffusion: sparsity" ;;
+    assemble) awk -v a="$(section_seconds "$d" "diffusion: assemble")" -v b="$(section_seconds "$d" "diffusion: AMG setup")" \
       'BEGIN { printf "%.3f", a - b }' ;;
-    amg) seconds "$d" "diffusion: AMG setup" ;;
-    solve) seconds "$d" "diffusion: solve" ;;
-    mesh) seconds "$d" "diffusion mesh" ;;
+    amg) section_seconds "$d" "diffusion: AMG setup" ;;
+    solve) section_seconds "$d" "diffusion: solve" ;;
+    mesh) section_seconds "$d" "diffusion mesh" ;;
   esac
 }
 # ref_phase LOG PHASE: the reference's seconds of PHASE (none: -).
@@ -105,7 +97,7 @@ results_table uptake_reference ranks case "DM DoFs" "DM CG iterations" "DM [s]" 
 for label in "${labels[@]}"; do
   read -r dofs_a its_a < <(sed -n 's/.*cells: \([0-9]*\) DoFs, \([0-9]*\) solver iterations.*/\1 \2/p' "dm_$label.log")
   read -r dofs_b its_b < <(sed -n 's/^reference: \([0-9]*\) dofs, \([0-9]*\) iterations.*/\1 \2/p' "ref_$label.log")
-  dm=$(dm_total "dm_$label") ref=$(printf '%.3f' "$(field "ref_$label.log" total)")
+  dm=$(uptake_seconds "dm_$label") ref=$(printf '%.3f' "$(field "ref_$label.log" total)")
   results_row "$ranks" "$label" "$dofs_a" "$its_a" "$dm" "$dofs_b" "$its_b" "$ref" "$(ratio "$dm" "$ref")" \
     "$(awk -v a="$dm" -v b="$ref" -v n="$dofs_a" -v m="$dofs_b" 'BEGIN { printf "%.2f", (a / n) / (b / m) }')"
 done

@@ -213,17 +213,29 @@ namespace rbc_ifem
     DoFTools::extract_locally_relevant_dofs(level_set_dofs, relevant);
 
     // Every node of an owned cell is computed here, those other ranks own
-    // too: the ridge check needs their closest points.
+    // too: the ridge check needs their closest points. A node outside the
+    // lumen (vessel wall, gas layer) is in the plasma's side of every
+    // membrane, since no membrane leaves the lumen (locate_surface_points()
+    // checks, on the nodes of the lumen), and only its distance matters:
+    // the nearest membrane sample's, a tenth of the time, is within the
+    // sample spacing of it. Those nodes are over half of them.
     LinearAlgebra::distributed::Vector<double> owned_values(owned,
                                                             communicator);
     closest_points.clear();
-    for (const auto &[dof, position] : level_set_nodes())
+    for (const LevelSetNode &node : level_set_nodes())
       {
-        const MembraneDistance::ClosestPoint closest =
-          distance->closest_point(position);
-        if (owned.is_element(dof))
-          owned_values[dof] = -closest.signed_distance;
-        closest_points.emplace(dof, closest);
+        double signed_distance;
+        if (node.in_lumen)
+          {
+            const MembraneDistance::ClosestPoint closest =
+              distance->closest_point(node.position);
+            signed_distance = closest.signed_distance;
+            closest_points.emplace(node.dof, closest);
+          }
+        else
+          signed_distance = distance->nearest_sample_distance(node.position);
+        if (owned.is_element(node.dof))
+          owned_values[node.dof] = -signed_distance;
       }
     // Hanging values take the coarse side's, so that neighbours agree on
     // where the membrane is.
@@ -242,13 +254,13 @@ namespace rbc_ifem
     classifier->reclassify();
   }
 
-  std::vector<std::pair<types::global_dof_index, Point<3>>>
+  std::vector<CutCellGeometry::LevelSetNode>
   CutCellGeometry::level_set_nodes() const
   {
     // Every cell that holds a node of an owned cell shares a vertex with
     // it, so it is owned or a ghost here.
     std::map<types::global_dof_index, std::pair<CellId, Point<3>>> placed;
-    std::set<types::global_dof_index>                              wanted;
+    std::set<types::global_dof_index>    wanted, in_lumen;
     FEValues<3>                          fe_values(cached_mapping,
                           level_set_fe,
                           Quadrature<3>(level_set_fe.get_unit_support_points()),
@@ -264,6 +276,8 @@ namespace rbc_ifem
       if (!cell->is_artificial())
         {
           cell->get_dof_indices(dofs);
+          if (cell->material_id() == Material::plasma)
+            in_lumen.insert(dofs.begin(), dofs.end());
           bool evaluated = false;
           for (unsigned int i = 0; i < dofs.size(); ++i)
             if (wanted.count(dofs[i]) > 0)
@@ -277,11 +291,20 @@ namespace rbc_ifem
                 placed[dofs[i]] = {cell->id(), fe_values.quadrature_point(i)};
               }
         }
-    std::vector<std::pair<types::global_dof_index, Point<3>>> nodes;
+    std::vector<LevelSetNode> nodes;
     nodes.reserve(placed.size());
     for (const auto &[dof, placement] : placed)
-      nodes.emplace_back(dof, placement.second);
+      nodes.push_back({dof, placement.second, in_lumen.count(dof) > 0});
     return nodes;
+  }
+
+  bool
+  CutCellGeometry::is_cut_in_lumen(
+    const Triangulation<3>::cell_iterator &cell) const
+  {
+    // Only the lumen's nodes have closest points; a cut cell outside it
+    // is an input error, which locate_surface_points() reports.
+    return cell->material_id() == Material::plasma && is_cut(cell);
   }
 
   std::vector<CellId>
@@ -290,7 +313,7 @@ namespace rbc_ifem
     std::vector<CellId>                  cells;
     std::vector<types::global_dof_index> dofs(level_set_fe.n_dofs_per_cell());
     for (const auto &cell : level_set_dofs.active_cell_iterators())
-      if (cell->is_locally_owned() && is_cut(cell))
+      if (cell->is_locally_owned() && is_cut_in_lumen(cell))
         {
           cell->get_dof_indices(dofs);
           const auto faces_away = [&](const types::global_dof_index i) {
@@ -311,7 +334,7 @@ namespace rbc_ifem
   {
     std::vector<types::global_dof_index> dofs(level_set_fe.n_dofs_per_cell());
     for (const auto &cell : level_set_dofs.active_cell_iterators())
-      if (cell->is_locally_owned() && is_cut(cell))
+      if (cell->is_locally_owned() && is_cut_in_lumen(cell))
         {
           cell->get_dof_indices(dofs);
           const unsigned int first = closest_points.at(dofs[0]).membrane;

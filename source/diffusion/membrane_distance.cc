@@ -409,6 +409,33 @@ namespace rbc_ifem
       }
   }
 
+  std::vector<Point<3>>
+  MembraneDistance::images_of(const Point<3> &x) const
+  {
+    std::vector<Point<3>> images{x};
+    if (period)
+      for (const double shift : {-*period, *period})
+        images.push_back(x + Tensor<1, 3>({shift, 0., 0.}));
+    return images;
+  }
+
+  double
+  MembraneDistance::nearest_sample_distance(const Point<3> &x) const
+  {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Point<3> &image : images_of(x))
+      {
+        if (distance_bound(image) >= nearest)
+          continue;
+        std::vector<std::size_t> found;
+        tree->rtree.query(boost::geometry::index::nearest(image, 1),
+                          std::back_inserter(found));
+        for (const std::size_t k : found)
+          nearest = std::min(nearest, image.distance(samples[k]));
+      }
+    return nearest;
+  }
+
   MembraneDistance::ClosestPoint
   MembraneDistance::closest_point(const Point<3> &x) const
   {
@@ -416,12 +443,8 @@ namespace rbc_ifem
     if (known != answers.end())
       return known->second;
 
-    std::vector<Point<3>> images{x};
-    if (period)
-      for (const double shift : {-*period, *period})
-        images.push_back(x + Tensor<1, 3>({shift, 0., 0.}));
-
-    Candidate best;
+    const std::vector<Point<3>> images = images_of(x);
+    Candidate                   best;
     best.point.signed_distance = std::numeric_limits<double>::infinity();
     std::vector<std::vector<unsigned int>> tried(images.size());
     for (unsigned int i = 0; i < images.size(); ++i)

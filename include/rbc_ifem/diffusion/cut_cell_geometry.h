@@ -202,14 +202,26 @@ namespace rbc_ifem
     cache_mapping();
     void
     compute_level_set();
+    /// A level set node, where it is, and whether a cell of the lumen
+    /// (Material::plasma) holds it.
+    struct LevelSetNode
+    {
+      types::global_dof_index dof;
+      Point<3>                position;
+      bool                    in_lumen;
+    };
     /**
-     * The level set nodes of the cells this rank owns and their positions,
-     * each placed by the cell with the smallest CellId that holds it (the
-     * cells' mappings differ in the last digits), so that the ranks that
-     * share a node, and any number of ranks, place it alike.
+     * The level set nodes of the cells this rank owns, each placed by the
+     * cell with the smallest CellId that holds it (the cells' mappings
+     * differ in the last digits), so that the ranks that share a node, and
+     * any number of ranks, place it alike. Every cell that holds such a
+     * node is owned or a ghost here, so the ranks agree on in_lumen too.
      */
-    std::vector<std::pair<types::global_dof_index, Point<3>>>
+    std::vector<LevelSetNode>
     level_set_nodes() const;
+    /// Whether @p cell is cut and in the lumen (Material::plasma).
+    bool
+    is_cut_in_lumen(const Triangulation<3>::cell_iterator &cell) const;
     /// The cut cells of this rank that the distance has a ridge in: two of
     /// their level set nodes whose closest points on one membrane face
     /// opposite ways.
@@ -257,8 +269,8 @@ namespace rbc_ifem
     /// φ = −(signed distance): < 0 in the plasma (deal.II's "inside"), on
     /// the nodes of the cells this rank owns and their ghost neighbours.
     LinearAlgebra::distributed::Vector<double> level_set_values;
-    /// The membrane closest to each level set node of the cells this rank
-    /// owns, and the outward normal at the closest point.
+    /// The membrane closest to each level set node in the lumen of the
+    /// cells this rank owns, and the outward normal at the closest point.
     std::map<types::global_dof_index, MembraneDistance::ClosestPoint>
                                                     closest_points;
     std::unique_ptr<NonMatching::MeshClassifier<3>> classifier;

@@ -73,6 +73,17 @@ namespace rbc_ifem
     ClosestPoint
     closest_point(const Point<3> &x) const;
 
+    /**
+     * The distance from @p x to the nearest of the points the membranes
+     * are sampled at (the nearest periodic image's, in a periodic
+     * segment): at least the distance to the membranes and at most the
+     * sample spacing more, for a hundredth of a closest_point()'s cost. It
+     * has no sign: where only the distance of a point known to lie in the
+     * plasma matters, not where it is.
+     */
+    double
+    nearest_sample_distance(const Point<3> &x) const;
+
   private:
     /// One membrane cell as a polynomial patch of degree p.
     struct Patch
@@ -172,6 +183,11 @@ namespace rbc_ifem
     /// membranes, which rules out periodic images far from them.
     std::pair<Point<3>, Point<3>> sample_box;
     double                        sample_margin = 0.;
+
+    /// @p x, and in a periodic segment its images a period before and
+    /// after it.
+    std::vector<Point<3>>
+    images_of(const Point<3> &x) const;
 
     /// A lower bound on the distance from @p x to every membrane.
     double

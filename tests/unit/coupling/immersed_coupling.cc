@@ -1,4 +1,4 @@
-// mpirun: 1 2 3
+// mpirun: 1 2 3 4
 
 // The immersed coupling (ImmersedCoupling) on the fluid's Q2-Q1 space, for
 // the nodes of an Evans-Fung membrane in the capillary, on any number of

@@ -133,6 +133,17 @@ namespace rbc_ifem
     return per_point(Kv);
   }
 
+  std::vector<Tensor<1, 3>>
+  CellPopulation::stiffness_diagonal() const
+  {
+    std::vector<Vector<double>> diagonal(size());
+    for (unsigned int c = 0; c < size(); ++c)
+      diagonal[c].reinit(x[c].size());
+    for (const auto &K : stiffnesses)
+      K->add_diagonal(diagonal);
+    return per_point(diagonal);
+  }
+
   Tensor<1, 3>
   CellPopulation::held_force() const
   {

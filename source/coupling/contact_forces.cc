@@ -48,6 +48,23 @@ namespace rbc_ifem
           }
       }
 
+      void
+      add_diagonal(std::vector<Vector<double>> &diagonal) const override
+      {
+        const auto add = [&](const PointDoFs &point, const Tensor<2, 3> &H) {
+          const auto &[c, dofs] = point;
+          for (unsigned int d = 0; d < 3; ++d)
+            diagonal[c][dofs[d]] += H[d][d];
+        };
+        for (const auto &[point, H] : single)
+          add(point, H);
+        for (const auto &[i, j, H] : pairs)
+          {
+            add(i, H);
+            add(j, H);
+          }
+      }
+
       std::vector<std::pair<PointDoFs, Tensor<2, 3>>>             single;
       std::vector<std::tuple<PointDoFs, PointDoFs, Tensor<2, 3>>> pairs;
     };

@@ -230,6 +230,23 @@ namespace rbc_ifem
                            const AffineConstraints<double> &constraints,
                            VelocityVector                  &load) const
   {
+    spread_power(forces, 1, constraints, load);
+  }
+
+  void
+  ImmersedCoupling::spread_squares(const std::vector<Tensor<1, 3>> &weights,
+                                   const AffineConstraints<double> &constraints,
+                                   VelocityVector                  &load) const
+  {
+    spread_power(weights, 2, constraints, load);
+  }
+
+  void
+  ImmersedCoupling::spread_power(const std::vector<Tensor<1, 3>> &forces,
+                                 const unsigned int               power,
+                                 const AffineConstraints<double> &constraints,
+                                 VelocityVector                  &load) const
+  {
     AssertDimension(forces.size(), n_membrane_points);
     Vector<double> cell_load(dof_handler.get_fe().n_dofs_per_cell());
     auto           phi = shape_values.begin();
@@ -238,7 +255,11 @@ namespace rbc_ifem
         cell_load = 0.;
         for (unsigned int k = first; k < last; ++k)
           for (const auto &[j, c] : velocity_shape_functions)
-            cell_load[j] += forces[points_by_cell[k]][c] * *phi++;
+            {
+              const double value = *phi++;
+              cell_load[j] += forces[points_by_cell[k]][c] *
+                              (power == 1 ? value : value * value);
+            }
         constraints.distribute_local_to_global(cell_load, dofs, load);
       });
     load.compress(VectorOperation::add);

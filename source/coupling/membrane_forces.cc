@@ -41,6 +41,13 @@ namespace rbc_ifem
           cells[c].vmult_add(results[c], v[c]);
       }
 
+      void
+      add_diagonal(std::vector<Vector<double>> &diagonal) const override
+      {
+        for (unsigned int c = 0; c < cells.size(); ++c)
+          cells[c].add_diagonal(diagonal[c]);
+      }
+
       std::vector<MembraneStiffness> cells;
     };
 
@@ -58,6 +65,13 @@ namespace rbc_ifem
       {
         for (unsigned int c = 0; c < v.size(); ++c)
           results[c].add(k, v[c]);
+      }
+
+      void
+      add_diagonal(std::vector<Vector<double>> &diagonal) const override
+      {
+        for (Vector<double> &d : diagonal)
+          d.add(k);
       }
 
     private:

@@ -25,4 +25,12 @@ namespace rbc_ifem
                     result);
   }
 
+  void
+  SemiImplicitLoad::add_diagonal(VelocityVector &result) const
+  {
+    std::vector<Tensor<1, 3>> diagonal = cells.stiffness_diagonal();
+    for (Tensor<1, 3> &d : diagonal)
+      d *= time_step;
+    coupling.spread_squares(diagonal, constraints, result);
+  }
 } // namespace rbc_ifem

@@ -708,6 +708,18 @@ namespace rbc_ifem
     return mapping;
   }
 
+  const MappingQ<3> &
+  FluidProblem::get_level_mapping() const
+  {
+    return level_mapping;
+  }
+
+  VelocityMultigrid &
+  FluidProblem::velocity_levels()
+  {
+    return *velocity_multigrid;
+  }
+
   const AffineConstraints<double> &
   FluidProblem::velocity_zero_constraints() const
   {

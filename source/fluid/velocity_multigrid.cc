@@ -93,11 +93,50 @@ namespace rbc_ifem
   VelocityMultigrid::set_coefficients(const double mass_factor,
                                       const double viscosity)
   {
+    for (unsigned int level = 0; level <= operators.max_level(); ++level)
+      operators[level]->set_coefficients(mass_factor, viscosity);
+    coarse =
+      std::make_unique<CoarseSolver>(*operators[0], *level_constraints[0]);
+    build_cycle();
+  }
+
+  void
+  VelocityMultigrid::set_added_terms(
+    const std::vector<VelocityOperator::AddedTerm> &terms,
+    const std::vector<VelocityVector>              &diagonals)
+  {
+    AssertDimension(terms.size(), n_levels());
+    for (unsigned int level = 0; level <= operators.max_level(); ++level)
+      operators[level]->set_added_term(terms[level], diagonals[level]);
+    build_cycle();
+  }
+
+  const DoFHandler<3> &
+  VelocityMultigrid::level_dof_handler(const unsigned int level) const
+  {
+    return *level_dofs[level];
+  }
+
+  const AffineConstraints<double> &
+  VelocityMultigrid::level_zero_constraints(const unsigned int level) const
+  {
+    return *level_constraints[level];
+  }
+
+  void
+  VelocityMultigrid::initialize_level_vector(const unsigned int level,
+                                             VelocityVector    &v) const
+  {
+    operators[level]->initialize_dof_vector(v);
+  }
+
+  void
+  VelocityMultigrid::build_cycle()
+  {
     const unsigned int                      fine = operators.max_level();
     MGLevelObject<Smoother::AdditionalData> smoother_data(0, fine);
     for (unsigned int level = 0; level <= fine; ++level)
       {
-        operators[level]->set_coefficients(mass_factor, viscosity);
         // Chebyshev of degree 2 on the upper part [λ_max/20, 1.2 λ_max] of
         // the spectrum of D⁻¹A: the part the coarser levels cannot see.
         smoother_data[level].preconditioner =
@@ -107,8 +146,6 @@ namespace rbc_ifem
         smoother_data[level].eig_cg_n_iterations = 20;
       }
     smoother.initialize(operators, smoother_data);
-    coarse =
-      std::make_unique<CoarseSolver>(*operators[0], *level_constraints[0]);
 
     level_matrices = std::make_unique<mg::Matrix<VelocityVector>>(operators);
     multigrid      = std::make_unique<Multigrid<VelocityVector>>(

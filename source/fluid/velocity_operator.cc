@@ -42,6 +42,12 @@ namespace rbc_ifem
                                             mass_factor * JxW};
           }
       }
+    initialize_dof_vector(a_diagonal);
+    MatrixFreeTools::compute_diagonal(*matrix_free,
+                                      a_diagonal,
+                                      &VelocityOperator::apply_on_cell,
+                                      this,
+                                      dof_index);
   }
 
   void
@@ -89,8 +95,33 @@ namespace rbc_ifem
   {
     matrix_free->cell_loop(
       &VelocityOperator::apply_on_cells, this, dst, src, /*zero_dst=*/true);
+    if (added_term)
+      {
+        // The term condenses its constrained rows to zero, so that they
+        // stay the identity's.
+        const bool ghosted = src.has_ghost_elements();
+        if (!ghosted)
+          src.update_ghost_values();
+        added_product = 0.;
+        added_term(src, added_product);
+        if (!ghosted)
+          src.zero_out_ghost_values();
+        dst += added_product;
+      }
     for (const unsigned int i : matrix_free->get_constrained_dofs(dof_index))
       dst.local_element(i) = src.local_element(i);
+  }
+
+  void
+  VelocityOperator::set_added_term(const AddedTerm      &apply,
+                                   const VelocityVector &diagonal)
+  {
+    added_term = apply;
+    if (added_term)
+      {
+        added_diagonal = diagonal;
+        initialize_dof_vector(added_product);
+      }
   }
 
   void
@@ -123,12 +154,9 @@ namespace rbc_ifem
   {
     auto inverse = std::make_shared<DiagonalMatrix<VelocityVector>>();
     VelocityVector &diagonal = inverse->get_vector();
-    initialize_dof_vector(diagonal);
-    MatrixFreeTools::compute_diagonal(*matrix_free,
-                                      diagonal,
-                                      &VelocityOperator::apply_on_cell,
-                                      this,
-                                      dof_index);
+    diagonal                 = a_diagonal;
+    if (added_term)
+      diagonal += added_diagonal;
     for (const unsigned int i : matrix_free->get_constrained_dofs(dof_index))
       diagonal.local_element(i) = 1.;
     for (double &d : diagonal)

@@ -245,6 +245,13 @@ namespace rbc_ifem
   {
     semi_implicit = std::make_unique<SemiImplicitLoad>(
       *coupling, cells, fluid.velocity_zero_constraints(), time_step);
+    multilevel_term =
+      std::make_unique<MultilevelMembraneTerm>(fluid.velocity_levels(),
+                                               fluid.get_level_mapping(),
+                                               *semi_implicit,
+                                               cells,
+                                               domain.period,
+                                               time_step);
     fluid.set_velocity_load([this](const auto &v, auto &result) {
       TimerOutput::Scope scope(timer, "coupling: implicit force load");
       (*semi_implicit)(v, result);
@@ -264,8 +271,12 @@ namespace rbc_ifem
     }
     if (parameters.immersed.coupling == CouplingScheme::semi_implicit)
       {
-        TimerOutput::Scope scope(timer, "membrane stiffness");
-        cells.linearize();
+        {
+          TimerOutput::Scope scope(timer, "membrane stiffness");
+          cells.linearize();
+        }
+        TimerOutput::Scope scope(timer, "coupling: multigrid levels");
+        multilevel_term->update();
       }
     for (const Tensor<1, 3> &force : forces)
       if (!std::isfinite(force.norm()))

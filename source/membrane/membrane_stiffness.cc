@@ -93,6 +93,20 @@ namespace rbc_ifem
       dst.add(c * (gradient * src), gradient);
   }
 
+  void
+  MembraneStiffness::add_diagonal(Vector<double> &diagonal) const
+  {
+    Vector<double> sparse(diagonal.size());
+    for (unsigned int i = 0; i < sparse.size(); ++i)
+      sparse[i] = local.diag_element(i);
+    if (n_ranks(communicator) > 1)
+      add_up_over_ranks(make_array_view(sparse), communicator);
+    diagonal += sparse;
+    for (const auto &[c, gradient] : rank_one)
+      for (unsigned int i = 0; i < diagonal.size(); ++i)
+        diagonal[i] += c * gradient[i] * gradient[i];
+  }
+
   template <typename Number>
   auto
   Membrane::point_integrands(const unsigned int           c,

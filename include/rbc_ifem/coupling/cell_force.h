@@ -40,6 +40,11 @@ namespace rbc_ifem
     virtual void
     add_product(const std::vector<Vector<double>> &displacements,
                 std::vector<Vector<double>>       &results) const = 0;
+
+    /// Add the diagonal of K to @p diagonal (one Vector per cell, in the
+    /// layout of the positions).
+    virtual void
+    add_diagonal(std::vector<Vector<double>> &diagonal) const = 0;
   };
 
   /**

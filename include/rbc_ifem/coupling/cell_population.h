@@ -111,6 +111,11 @@ namespace rbc_ifem
     std::vector<Tensor<1, 3>>
     stiffness_product(const std::vector<Tensor<1, 3>> &displacements) const;
 
+    /// The diagonal of K at the positions of the last linearize(), point by
+    /// point (its x, y and z entries).
+    std::vector<Tensor<1, 3>>
+    stiffness_diagonal() const;
+
     /**
      * The net external force on the cells at the last compute_forces()
      * [pN]: what holds them (CellForceReport::external_force, summed).

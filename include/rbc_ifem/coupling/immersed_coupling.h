@@ -81,6 +81,16 @@ namespace rbc_ifem
            VelocityVector                  &load) const;
 
     /**
+     * Add f_J = Σ_I w_I · φ_J(x_I)² to @p load, as spread() adds its
+     * forces: with w_I the diagonal of a stiffness K of the points, the
+     * diagonal of Sᵀ K S if K had no entries between two points.
+     */
+    void
+    spread_squares(const std::vector<Tensor<1, 3>> &weights,
+                   const AffineConstraints<double> &constraints,
+                   VelocityVector                  &load) const;
+
+    /**
      * v_I = Σ_J v_J φ_J(x_I) at every point, from @p velocity (ghosted);
      * the same result on every rank.
      */
@@ -108,6 +118,13 @@ namespace rbc_ifem
 
   private:
     using CellIterator = Triangulation<3>::active_cell_iterator;
+
+    /// spread() with the shape values to the power @p power (1 or 2).
+    void
+    spread_power(const std::vector<Tensor<1, 3>> &forces,
+                 unsigned int                     power,
+                 const AffineConstraints<double> &constraints,
+                 VelocityVector                  &load) const;
 
     /**
      * The reference position of @p p in the locally owned @p cell, if it

@@ -38,6 +38,11 @@ namespace rbc_ifem
     void
     operator()(const VelocityVector &v, VelocityVector &result) const;
 
+    /// Add an estimate of L's diagonal to @p result (compressed here):
+    /// Δt Sᵀ diag(K) S's, which leaves out K's entries between points.
+    void
+    add_diagonal(VelocityVector &result) const;
+
   private:
     const ImmersedCoupling          &coupling;
     const CellPopulation            &cells;

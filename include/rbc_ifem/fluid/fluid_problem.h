@@ -235,6 +235,13 @@ namespace rbc_ifem
     n_dofs() const;
     const MappingQ<3> &
     get_mapping() const;
+    /// The mapping of the multigrid's coarser levels.
+    const MappingQ<3> &
+    get_level_mapping() const;
+    /// The velocity block's multigrid, whose levels a term can be added to
+    /// (VelocityMultigrid::set_added_terms()).
+    VelocityMultigrid &
+    velocity_levels();
     /// Hanging nodes, periodicity and zero velocity on the Dirichlet
     /// boundaries: the constraints of load vectors and updates.
     const AffineConstraints<double> &

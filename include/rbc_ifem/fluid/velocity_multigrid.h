@@ -69,6 +69,27 @@ namespace rbc_ifem
     void
     set_coefficients(const double mass_factor, const double viscosity);
 
+    /**
+     * Add to each level's A the term of @p terms (one per level, coarsest
+     * first; its diagonal in @p diagonals), and rebuild the smoothers. The
+     * coarsest level's direct solve keeps A alone.
+     */
+    void
+    set_added_terms(const std::vector<VelocityOperator::AddedTerm> &terms,
+                    const std::vector<VelocityVector>              &diagonals);
+
+    /// The DoFs of @p level (0 the coarsest, n_levels() - 1 the fine one).
+    const DoFHandler<3> &
+    level_dof_handler(unsigned int level) const;
+
+    /// The homogeneous velocity constraints of @p level.
+    const AffineConstraints<double> &
+    level_zero_constraints(unsigned int level) const;
+
+    /// @p v with the layout of @p level's operator.
+    void
+    initialize_level_vector(unsigned int level, VelocityVector &v) const;
+
     /// dst = one V-cycle applied to src (vectors of the fine operator).
     void
     vmult(VelocityVector &dst, const VelocityVector &src) const;
@@ -87,6 +108,11 @@ namespace rbc_ifem
                                            VelocityVector,
                                            DiagonalMatrix<VelocityVector>>;
     class CoarseSolver;
+
+    /// The smoothers (from the operators as they are now), the coarse
+    /// solve and the cycle.
+    void
+    build_cycle();
 
     /// The levels' DoFs and constraints; the finest level's are the
     /// MatrixFree's, pointed to here.

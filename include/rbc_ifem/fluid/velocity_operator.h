@@ -10,6 +10,7 @@
 #include <deal.II/matrix_free/fe_evaluation.h>
 #include <deal.II/matrix_free/matrix_free.h>
 
+#include <functional>
 #include <memory>
 
 namespace rbc_ifem
@@ -89,6 +90,14 @@ namespace rbc_ifem
     void
     apply_on_cell(Evaluator &phi) const;
 
+    /// A term added to A: @p apply adds it times its first argument (ghosted)
+    /// to its second; @p diagonal is (an estimate of) its diagonal, which
+    /// inverse_diagonal() includes. An empty @p apply removes it.
+    using AddedTerm =
+      std::function<void(const VelocityVector &, VelocityVector &)>;
+    void
+    set_added_term(const AddedTerm &apply, const VelocityVector &diagonal);
+
   private:
     void
     apply_on_cells(const MatrixFree<3, double>                 &matrix_free,
@@ -102,6 +111,11 @@ namespace rbc_ifem
     /// triangle of the metric μ JxW J⁻¹J⁻ᵀ (xx, xy, xz, yy, yz, zz), then
     /// the mass weight (ρ/Δt) JxW.
     AlignedVector<std::array<VectorizedArray<double>, 7>> coefficients;
+    /// The diagonal of A, at the coefficients of set_coefficients().
+    VelocityVector         a_diagonal;
+    AddedTerm              added_term;
+    VelocityVector         added_diagonal;
+    mutable VelocityVector added_product;
   };
 } // namespace rbc_ifem
 

@@ -5,6 +5,7 @@
 #include <rbc_ifem/coupling/cell_population.h>
 #include <rbc_ifem/coupling/contact_gaps.h>
 #include <rbc_ifem/coupling/immersed_coupling.h>
+#include <rbc_ifem/coupling/multilevel_membrane_term.h>
 #include <rbc_ifem/coupling/semi_implicit_load.h>
 #include <rbc_ifem/coupling/time_step_limit.h>
 #include <rbc_ifem/diffusion/uptake_solver.h>
@@ -212,12 +213,14 @@ namespace rbc_ifem
     std::unique_ptr<ImmersedCoupling> coupling;
     /// The semi-implicit coupling's load; null for the explicit coupling.
     std::unique_ptr<SemiImplicitLoad> semi_implicit;
-    std::vector<RunObserver *>        observers;
-    RunRecord                         record;
-    const RunReport                   run_report;
-    Checkpoint                        checkpoint;
-    const StepSchedule                schedule;
-    VolumeWatch                       volume_watch;
+    /// L on the velocity multigrid's coarser levels too.
+    std::unique_ptr<MultilevelMembraneTerm> multilevel_term;
+    std::vector<RunObserver *>              observers;
+    RunRecord                               record;
+    const RunReport                         run_report;
+    Checkpoint                              checkpoint;
+    const StepSchedule                      schedule;
+    VolumeWatch                             volume_watch;
     /// Whether anything can touch: several cells, or a wall.
     bool   contacts  = false;
     double mesh_size = 0.; ///< fluid h at the membranes [µm]

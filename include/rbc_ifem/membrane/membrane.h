@@ -64,6 +64,10 @@ namespace rbc_ifem
     /// @p dst += K @p src; collective over the communicator.
     void
     vmult_add(Vector<double> &dst, const Vector<double> &src) const;
+
+    /// @p diagonal += the diagonal of K; collective over the communicator.
+    void
+    add_diagonal(Vector<double> &diagonal) const;
   };
 
   /**

@@ -5,6 +5,7 @@
 
 #include "check.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <random>
@@ -64,6 +65,36 @@ check_gradient(Checker                  &check,
 }
 
 /**
+ * Check CellPopulation::stiffness_diagonal() at the last linearize(): at
+ * every 37th point and each direction d, the diagonal entry equals
+ * e_(i,d) · K e_(i,d), K applied to the unit displacement of that point
+ * alone, to a relative 1e-12.
+ */
+inline void
+check_stiffness_diagonal(Checker                        &check,
+                         const rbc_ifem::CellPopulation &cells,
+                         const std::string              &what)
+{
+  using namespace dealii;
+  const std::vector<Tensor<1, 3>> diagonal = cells.stiffness_diagonal();
+  double                          largest = 0., error = 0.;
+  for (unsigned int i = 0; i < cells.n_points(); i += 37)
+    for (unsigned int d = 0; d < 3; ++d)
+      {
+        std::vector<Tensor<1, 3>> unit(cells.n_points());
+        unit[i][d]         = 1.;
+        const double entry = cells.stiffness_product(unit)[i][d];
+        largest            = std::max(largest, std::abs(entry));
+        error              = std::max(error, std::abs(diagonal[i][d] - entry));
+      }
+  std::cout << "  " << what << ": largest diagonal entry " << largest
+            << ", largest error " << error << '\n';
+  check.at_most(what + ": |diag K - e·K e| / max |e·K e|",
+                error / largest,
+                1e-12);
+}
+
+/**
  * Check the tangent stiffness of @p cells (CellPopulation::linearize()):
  * along a random direction v, K v equals the central difference of the
  * forces, (F(x - hv) - F(x + hv))/(2h), to a relative 1e-6. The cells are
@@ -114,6 +145,7 @@ check_stiffness(Checker                  &check,
   check.at_most(what + ": |K v - (F(x-hv) - F(x+hv))/2h| / |K v|",
                 std::sqrt(error / norm),
                 1e-6);
+  check_stiffness_diagonal(check, cells, what);
 }
 
 #endif

@@ -126,6 +126,58 @@ namespace
     return v;
   }
 
+  /**
+   * spread_squares(): with weights w_I (here F_I squared, entry by entry),
+   * its entry J is Σ_I w_I · φ_J(x_I)², where φ_J(x_I) is what interpolate()
+   * gives for the unit vector e_J; checked at the first DoFs of each rank
+   * that some point reaches (no constraints, so e_J is a field of the
+   * space).
+   */
+  void
+  check_spread_squares(Checker                         &check,
+                       const Flow                      &flow,
+                       const ImmersedCoupling          &coupling,
+                       const std::vector<Tensor<1, 3>> &F)
+  {
+    std::vector<Tensor<1, 3>> w(F.size());
+    for (unsigned int i = 0; i < F.size(); ++i)
+      for (unsigned int c = 0; c < 3; ++c)
+        w[i][c] = F[i][c] * F[i][c];
+    AffineConstraints<double> none;
+    none.close();
+    VelocityVector squares = flow.vector();
+    coupling.spread_squares(w, none, squares);
+    std::vector<types::global_dof_index> mine;
+    for (const auto J : squares.locally_owned_elements())
+      if (squares(J) != 0. && mine.size() < 4)
+        mine.push_back(J);
+    double error = 0., largest = 0.;
+    for (const auto &rank_dofs :
+         Utilities::MPI::all_gather(MPI_COMM_WORLD, mine))
+      for (const types::global_dof_index J : rank_dofs)
+        {
+          VelocityVector unit = flow.vector();
+          if (unit.in_local_range(J))
+            unit(J) = 1.;
+          unit.update_ghost_values();
+          const std::vector<Tensor<1, 3>> phi    = coupling.interpolate(unit);
+          double                          probed = 0.;
+          for (unsigned int i = 0; i < phi.size(); ++i)
+            for (unsigned int c = 0; c < 3; ++c)
+              probed += w[i][c] * phi[i][c] * phi[i][c];
+          const double spread =
+            Utilities::MPI::sum(squares.in_local_range(J) ? squares(J) : 0.,
+                                MPI_COMM_WORLD);
+          error   = std::max(error, std::abs(spread - probed));
+          largest = std::max(largest, std::abs(probed));
+        }
+    std::cout << "  spread_squares: largest entry checked " << largest
+              << ", largest error " << error << '\n';
+    check.at_most("|spread_squares(w)_J - Σ_I w_I φ_J(x_I)²| / max",
+                  error / largest,
+                  1e-12);
+  }
+
   void
   check_conservation_and_adjointness(Checker &check)
   {
@@ -207,6 +259,7 @@ namespace
     check.at_most("|⟨spread F, v⟩ - Σ F_I · v_I| / Σ |F_I| |v_I| (adjointness)",
                   std::abs(condensed * v - power) / scale,
                   1e-12);
+    check_spread_squares(check, flow, coupling, F);
   }
 
   /**

@@ -109,10 +109,11 @@ namespace rbc_ifem
                                            DiagonalMatrix<VelocityVector>>;
     class CoarseSolver;
 
-    /// The smoothers (from the operators as they are now), the coarse
-    /// solve and the cycle.
+    /// The smoothers (from the operators as they are now, their largest
+    /// eigenvalues estimated by @p eigenvalue_iterations CG steps) and the
+    /// cycle.
     void
-    build_cycle();
+    build_cycle(unsigned int eigenvalue_iterations);
 
     /// The levels' DoFs and constraints; the finest level's are the
     /// MatrixFree's, pointed to here.

@@ -56,6 +56,9 @@ namespace rbc_ifem
     const unsigned int                       n = levels.n_levels();
     std::vector<VelocityOperator::AddedTerm> terms(n);
     std::vector<VelocityVector>              diagonals(n);
+    // Once for all levels: for a shared membrane it is a reduction.
+    const std::vector<Tensor<1, 3>> stiffness_diagonal =
+      cells.stiffness_diagonal();
     for (unsigned int level = 0; level < n; ++level)
       {
         const bool fine_level = level + 1 == n;
@@ -63,7 +66,7 @@ namespace rbc_ifem
         if (!fine_level && !placed(level))
           continue;
         const SemiImplicitLoad &L = fine_level ? fine : *loads[level];
-        L.add_diagonal(diagonals[level]);
+        L.add_diagonal(stiffness_diagonal, diagonals[level]);
         terms[level] = [&L](const VelocityVector &v, VelocityVector &result) {
           L(v, result);
         };

@@ -26,9 +26,11 @@ namespace rbc_ifem
   }
 
   void
-  SemiImplicitLoad::add_diagonal(VelocityVector &result) const
+  SemiImplicitLoad::add_diagonal(
+    const std::vector<Tensor<1, 3>> &stiffness_diagonal,
+    VelocityVector                  &result) const
   {
-    std::vector<Tensor<1, 3>> diagonal = cells.stiffness_diagonal();
+    std::vector<Tensor<1, 3>> diagonal = stiffness_diagonal;
     for (Tensor<1, 3> &d : diagonal)
       d *= time_step;
     coupling.spread_squares(diagonal, constraints, result);

@@ -39,9 +39,11 @@ namespace rbc_ifem
     operator()(const VelocityVector &v, VelocityVector &result) const;
 
     /// Add an estimate of L's diagonal to @p result (compressed here):
-    /// Δt Sᵀ diag(K) S's, which leaves out K's entries between points.
+    /// Δt Sᵀ diag(K) S's, which leaves out K's entries between points;
+    /// @p stiffness_diagonal is diag(K), CellPopulation::stiffness_diagonal().
     void
-    add_diagonal(VelocityVector &result) const;
+    add_diagonal(const std::vector<Tensor<1, 3>> &stiffness_diagonal,
+                 VelocityVector                  &result) const;
 
   private:
     const ImmersedCoupling          &coupling;

@@ -3,6 +3,7 @@
 #include <rbc_ifem/base/output_error.h>
 
 #include <deal.II/base/data_out_base.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/numerics/data_out.h>
 
@@ -11,6 +12,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -129,9 +131,10 @@ namespace rbc_ifem
   write_pvd(const std::string                                 &directory,
             const std::string                                 &name,
             const std::vector<std::pair<double, std::string>> &records,
-            const MPI_Comm                                     communicator)
+            const MPI_Comm                                     communicator,
+            const unsigned int                                 writer)
   {
-    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+    if (Utilities::MPI::this_mpi_process(communicator) == writer)
       write_file_atomically(directory + "/" + name + ".pvd",
                             [&](std::ostream &out) {
                               DataOutBase::write_pvd_record(out, records);
@@ -221,19 +224,27 @@ namespace rbc_ifem
   } // namespace
 
   std::string
-  written_files(const std::string &directory)
+  written_files(const std::string &directory, const MPI_Comm communicator)
   {
-    const std::filesystem::path         top = normal_path(directory);
-    std::vector<std::string>            names;
-    std::map<std::string, unsigned int> subdirectories;
+    // Each rank's files in @p directory but the VTU pieces, relative to it:
+    // rank 0 lists them all, once.
+    const std::filesystem::path top = normal_path(directory);
+    std::vector<std::string>    mine;
     for (const std::filesystem::path &file : files_written_so_far())
       {
         const std::filesystem::path relative = file.lexically_relative(top);
-        const std::string           first =
-          relative.empty() ? "" : relative.begin()->string();
-        if (first.empty() || first == ".." || file.extension() == ".vtu" ||
-            file.extension() == ".pvtu")
-          continue;
+        if (!relative.empty() && *relative.begin() != ".." &&
+            file.extension() != ".vtu" && file.extension() != ".pvtu")
+          mine.push_back(relative.string());
+      }
+    std::set<std::filesystem::path> files;
+    for (const auto &rank_files : Utilities::MPI::gather(communicator, mine, 0))
+      files.insert(rank_files.begin(), rank_files.end());
+    std::vector<std::string>            names;
+    std::map<std::string, unsigned int> subdirectories;
+    for (const std::filesystem::path &relative : files)
+      {
+        const std::string first = relative.begin()->string();
         if (relative.has_parent_path())
           ++subdirectories[first];
         else
@@ -265,6 +276,39 @@ namespace rbc_ifem
   {
     /// Write @p bytes as @p path, fsync'ed if @p sync; OutputError with
     /// errno's text, and no file left at @p path, if that fails.
+    /// Write @p bytes at @p offset of the open @p file; 0 or the errno.
+    int
+    write_at(const int           file,
+             const std::string  &bytes,
+             const std::uint64_t offset)
+    {
+      std::size_t written = 0;
+      while (written < bytes.size())
+        {
+          const ssize_t n = ::pwrite(file,
+                                     bytes.data() + written,
+                                     bytes.size() - written,
+                                     offset + written);
+          if (n < 0 && errno != EINTR)
+            return errno;
+          if (n > 0)
+            written += n;
+        }
+      return 0;
+    }
+
+    /// fsync (if @p sync) and close @p file after @p error (0 or an
+    /// errno); the first error of the three.
+    int
+    finish(const int file, int error, const bool sync)
+    {
+      if (error == 0 && sync && ::fsync(file) != 0)
+        error = errno;
+      if (::close(file) != 0 && error == 0)
+        error = errno;
+      return error;
+    }
+
     void
     write_bytes(const std::string &path,
                 const std::string &bytes,
@@ -273,22 +317,8 @@ namespace rbc_ifem
       const int file = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
       if (file < 0)
         throw OutputError(path, std::strerror(errno));
-      std::size_t written = 0;
-      int         error   = 0;
-      while (written < bytes.size() && error == 0)
-        {
-          const ssize_t n =
-            ::write(file, bytes.data() + written, bytes.size() - written);
-          if (n < 0 && errno != EINTR)
-            error = errno;
-          else if (n > 0)
-            written += n;
-        }
-      if (error == 0 && sync && ::fsync(file) != 0)
-        error = errno;
-      if (::close(file) != 0 && error == 0)
-        error = errno;
-      if (error != 0)
+      if (const int error = finish(file, write_at(file, bytes, 0), sync);
+          error != 0)
         {
           ::unlink(path.c_str());
           throw OutputError(path, std::strerror(error));
@@ -300,6 +330,44 @@ namespace rbc_ifem
   write_synced_file(const std::string &path, const std::string &bytes)
   {
     write_bytes(path, bytes, true);
+  }
+
+  void
+  write_in_rank_order(const std::string &path,
+                      const std::string &head,
+                      const std::string &block,
+                      const MPI_Comm     communicator)
+  {
+    const bool first = Utilities::MPI::this_mpi_process(communicator) == 0;
+    const std::uint64_t size   = block.size();
+    std::uint64_t       offset = 0;
+    MPI_Exscan(&size, &offset, 1, MPI_UINT64_T, MPI_SUM, communicator);
+    // Rank 0 makes the file (empty, whatever was there) before the others
+    // open it; each rank then writes its part where it goes, at once.
+    int error = 0, file = -1;
+    if (first)
+      {
+        file  = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        error = file < 0 ? errno : write_at(file, head, 0);
+      }
+    const std::uint64_t head_size =
+      Utilities::MPI::broadcast(communicator,
+                                static_cast<std::uint64_t>(head.size()),
+                                0);
+    if (!first)
+      {
+        file  = ::open(path.c_str(), O_WRONLY);
+        error = file < 0 ? errno : 0;
+      }
+    if (error == 0)
+      error = write_at(file, block, head_size + (first ? 0 : offset));
+    if (file >= 0)
+      error = finish(file, error, true);
+    // What any rank failed to write leaves no file that looks complete.
+    if (Utilities::MPI::logical_or(error != 0, communicator) && first)
+      ::unlink(path.c_str());
+    if (error != 0)
+      throw OutputError(path, std::strerror(error));
   }
 
   void

@@ -291,13 +291,18 @@ namespace rbc_ifem
   CellPopulation::write_vtu(const std::string &directory,
                             const std::string &name,
                             const unsigned int counter,
-                            const FieldData   &field_data) const
+                            const FieldData   &field_data,
+                            const MPI_Comm     communicator) const
   {
     std::vector<std::string> files;
     for (unsigned int c = 0; c < size(); ++c)
       {
         const std::string file = name + "_" + std::to_string(c) + "_" +
                                  Utilities::int_to_string(counter, 4);
+        files.push_back(file + ".vtu");
+        if (writer(c, communicator) !=
+            Utilities::MPI::this_mpi_process(communicator))
+          continue;
         const Vector<double> density =
           cell_membranes[c]->force_densities(x[c], forces[c]);
         cell_membranes[c]->write_vtu(x[c],
@@ -306,9 +311,14 @@ namespace rbc_ifem
                                      {{"force", forces[c]},
                                       {"force_density", density}},
                                      field_data);
-        files.push_back(file + ".vtu");
       }
     return files;
+  }
+
+  unsigned int
+  CellPopulation::writer(const unsigned int c, const MPI_Comm communicator)
+  {
+    return c % Utilities::MPI::n_mpi_processes(communicator);
   }
 
   const std::vector<Vector<double>> &

@@ -72,8 +72,8 @@ namespace rbc_ifem
 
     write_together(communicator,
                    [&]() { write_timing(timer, directory, communicator); });
-    pcout << "  wrote " << directory << "/: " << written_files(directory)
-          << std::endl;
+    pcout << "  wrote " << directory
+          << "/: " << written_files(directory, communicator) << std::endl;
     pcout << "  peak memory: " << peak_memory_mb(communicator)
           << " MB (largest over ranks)" << std::endl;
   }

@@ -483,62 +483,6 @@ namespace rbc_ifem
     return frame_velocity;
   }
 
-  std::vector<double>
-  FluidProblem::gather(const FluidVector &v) const
-  {
-    std::vector<double>     values(n_dofs(), 0.);
-    types::global_dof_index offset = 0;
-    for (unsigned int b = 0; b < 2; ++b)
-      {
-        for (const auto i : v.block(b).locally_owned_elements())
-          values[offset + i] = v.block(b)(i);
-        offset += v.block(b).size();
-      }
-    Utilities::MPI::sum(values, communicator, values);
-    return values;
-  }
-
-  void
-  FluidProblem::scatter(const std::vector<double> &values, FluidVector &v) const
-  {
-    AssertDimension(values.size(), n_dofs());
-    v.zero_out_ghost_values();
-    types::global_dof_index offset = 0;
-    for (unsigned int b = 0; b < 2; ++b)
-      {
-        for (const auto i : v.block(b).locally_owned_elements())
-          v.block(b)(i) = values[offset + i];
-        offset += v.block(b).size();
-      }
-    v.update_ghost_values();
-  }
-
-  FluidState
-  FluidProblem::state() const
-  {
-    FluidState state;
-    state.frame_velocity = frame_velocity;
-    state.residual_scale = residual_scale;
-    state.solution       = gather(current);
-    if (earlier.size() > 0)
-      state.earlier_solution = gather(earlier);
-    return state;
-  }
-
-  void
-  FluidProblem::set_state(const FluidState &state)
-  {
-    scatter(state.solution, current);
-    if (!state.earlier_solution.empty())
-      {
-        earlier.reinit(current);
-        scatter(state.earlier_solution, earlier);
-        earlier.zero_out_ghost_values();
-      }
-    frame_velocity = state.frame_velocity;
-    residual_scale = state.residual_scale;
-  }
-
   void
   FluidProblem::set_body_force(const VelocityVector &load)
   {

@@ -5,6 +5,8 @@
 #include <rbc_ifem/diffusion/uptake.h>
 #include <rbc_ifem/ifem/checkpoint.h>
 
+#include <deal.II/base/mpi.h>
+
 #include <boost/archive/binary_iarchive.hpp>
 #include <boost/archive/binary_oarchive.hpp>
 #include <boost/crc.hpp>
@@ -78,6 +80,29 @@ namespace rbc_ifem
         throw std::runtime_error("its header is damaged");
       return value;
     }
+
+    /// The @p n_blocks lines "block SIZE CRC" of a header, in a file of
+    /// @p file_size bytes.
+    std::vector<std::pair<std::uint64_t, std::uint32_t>>
+    block_lines(std::istream       &in,
+                const std::uint64_t n_blocks,
+                const std::uint64_t file_size)
+    {
+      // Each line is at least 10 characters: a count beyond the file's size
+      // is damage, not a reason to allocate.
+      if (n_blocks > file_size / 10)
+        throw std::runtime_error("its header is damaged");
+      std::vector<std::pair<std::uint64_t, std::uint32_t>> blocks;
+      for (std::uint64_t b = 0; b < n_blocks; ++b)
+        {
+          const auto    size = header_value<std::uint64_t>(in, "block");
+          std::uint32_t crc  = 0;
+          if (!(in >> crc))
+            throw std::runtime_error("its header is damaged");
+          blocks.emplace_back(size, crc);
+        }
+      return blocks;
+    }
   } // namespace
 
   std::uint32_t
@@ -138,19 +163,35 @@ namespace rbc_ifem
   Checkpoint::write(const CheckpointState &state,
                     const MPI_Comm         communicator) const
   {
-    if (Utilities::MPI::this_mpi_process(communicator) != 0)
-      return;
-    const std::string  payload = serialized(state);
-    std::ostringstream file;
-    file << title << "\nformat " << format << "\nlayout "
-         << layout_fingerprint() << "\nbytes " << payload.size() << "\ncrc32 "
-         << crc32(payload) << '\n'
-         << payload;
+    const std::string block = state.fluid_cells.to_bytes();
+    const std::vector<std::pair<std::uint64_t, std::uint32_t>> blocks =
+      Utilities::MPI::gather(
+        communicator,
+        std::make_pair(static_cast<std::uint64_t>(block.size()), crc32(block)));
+    const bool  first = Utilities::MPI::this_mpi_process(communicator) == 0;
+    std::string head;
+    if (first)
+      {
+        const std::string shared = serialized(state);
+        std::uint64_t     bytes  = shared.size();
+        for (const auto &[size, crc] : blocks)
+          bytes += size;
+        std::ostringstream header;
+        header << title << "\nformat " << format << "\nlayout "
+               << layout_fingerprint() << "\nbytes " << bytes << "\ncrc32 "
+               << crc32(shared) << "\nshared " << shared.size() << "\nblocks "
+               << blocks.size() << '\n';
+        for (const auto &[size, crc] : blocks)
+          header << "block " << size << ' ' << crc << '\n';
+        head = header.str() + shared;
+      }
     // The new one is complete on the disk before any name changes, and each
     // rename replaces a name in one step: a run killed at any moment leaves
     // checkpoint.bin, the last complete checkpoint or the new one.
     const std::string fresh = path() + ".part";
-    write_synced_file(fresh, file.str());
+    write_in_rank_order(fresh, head, block, communicator);
+    if (!first)
+      return;
     if (rotate && std::filesystem::exists(path()))
       keep_as_previous();
     rename_written_file(fresh, path());
@@ -189,8 +230,16 @@ namespace rbc_ifem
       throw OutputError(directory, std::strerror(error));
   }
 
-  std::string
-  Checkpoint::payload(const std::string &file) const
+  struct Checkpoint::Contents
+  {
+    std::string shared; ///< the shared part, checked
+    /// The size and CRC-32 of each fluid block, which start at first_block.
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> blocks;
+    std::uint64_t                                        first_block = 0;
+  };
+
+  Checkpoint::Contents
+  Checkpoint::contents(const std::string &file) const
   {
     std::ifstream in(file, std::ios::binary);
     if (!in)
@@ -212,52 +261,104 @@ namespace rbc_ifem
         std::to_string(layout) + ", this version's " +
         std::to_string(layout_fingerprint()) +
         "): it comes from another version with the same format number");
-    const auto bytes = header_value<unsigned long>(in, "bytes");
-    const auto crc   = header_value<std::uint32_t>(in, "crc32");
+    const auto bytes    = header_value<std::uint64_t>(in, "bytes");
+    const auto crc      = header_value<std::uint32_t>(in, "crc32");
+    const auto shared   = header_value<std::uint64_t>(in, "shared");
+    const auto n_blocks = header_value<std::uint64_t>(in, "blocks");
+    Contents   found;
+    found.blocks = block_lines(in, n_blocks, std::filesystem::file_size(file));
+    std::uint64_t sum = shared;
+    for (const auto &[size, block_crc] : found.blocks)
+      sum += size;
     in.get();
     // The size the header claims is checked against the file's before
     // anything is allocated for it.
-    const auto start     = in.tellg();
-    const auto available = std::filesystem::file_size(file) - start;
+    const std::uint64_t start     = in.tellg();
+    const std::uint64_t available = std::filesystem::file_size(file) - start;
     if (bytes > available)
       throw std::runtime_error("it is truncated: " + std::to_string(available) +
                                " of its " + std::to_string(bytes) +
                                " bytes are there");
-    std::string contents(bytes, '\0');
-    in.read(contents.data(), bytes);
-    if (crc32(contents) != crc)
+    if (sum != bytes)
+      throw std::runtime_error("its header is damaged");
+    found.shared.assign(shared, '\0');
+    in.read(found.shared.data(), shared);
+    if (crc32(found.shared) != crc)
       throw std::runtime_error(
         "it is damaged: the checksum of its contents does not match");
-    return contents;
+    found.first_block = start + shared;
+    return found;
+  }
+
+  CheckpointState
+  Checkpoint::read_file(const std::string &file,
+                        const MPI_Comm     communicator) const
+  {
+    const Contents                  found = contents(file);
+    CheckpointState                 state;
+    std::istringstream              bytes(found.shared);
+    boost::archive::binary_iarchive archive(bytes);
+    archive >> state;
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
+    std::ifstream      in(file, std::ios::binary);
+    std::uint64_t      at = found.first_block;
+    for (unsigned int b = 0; b < found.blocks.size(); ++b)
+      {
+        const auto [size, crc] = found.blocks[b];
+        if (b % n_ranks == Utilities::MPI::this_mpi_process(communicator))
+          {
+            std::string block(size, '\0');
+            in.seekg(at);
+            in.read(block.data(), size);
+            if (crc32(block) != crc)
+              throw std::runtime_error(
+                "it is damaged: the checksum of its contents does not match");
+            const CellRecords records = CellRecords::from_bytes(block);
+            if (state.fluid_cells.size() == 0)
+              state.fluid_cells = CellRecords(records.values_per_cell());
+            for (unsigned int r = 0; r < records.size(); ++r)
+              state.fluid_cells.add(records.cell(r), records.values(r));
+          }
+        at += size;
+      }
+    return state;
   }
 
   std::optional<CheckpointState>
-  Checkpoint::load(const std::string &file, std::string &why_not) const
+  Checkpoint::load(const std::string &file,
+                   std::string       &why_not,
+                   const MPI_Comm     communicator) const
   {
+    std::optional<CheckpointState> state;
     try
       {
-        CheckpointState                 state;
-        std::istringstream              bytes(payload(file));
-        boost::archive::binary_iarchive archive(bytes);
-        archive >> state;
-        return state;
+        state = read_file(file, communicator);
       }
     catch (const std::exception &e)
       {
         why_not = e.what();
-        return {};
       }
+    // A block only one rank read can be damaged: the first reason, if any
+    // rank has one, is every rank's.
+    for (const std::string &reason :
+         Utilities::MPI::all_gather(communicator, why_not))
+      if (!reason.empty())
+        {
+          why_not = reason;
+          return {};
+        }
+    return state;
   }
 
   CheckpointState
-  Checkpoint::read(const ResumingRun &run)
+  Checkpoint::read(const ResumingRun &run, const MPI_Comm communicator)
   {
     std::string                    why_not;
-    std::optional<CheckpointState> state = load(path(), why_not);
+    std::optional<CheckpointState> state = load(path(), why_not, communicator);
     if (!state)
       {
         std::string why_not_previous;
-        state = load(previous_path(), why_not_previous);
+        state = load(previous_path(), why_not_previous, communicator);
         if (!state)
           throw InputError(
             "Immersed cells/Resume",
@@ -308,19 +409,19 @@ namespace rbc_ifem
   Checkpoint::check_sizes(const CheckpointState &state,
                           const ResumingRun     &run) const
   {
-    if (state.n_ranks != run.n_ranks ||
-        state.fluid.solution.size() != run.n_fluid_dofs ||
+    if (state.fluid.n_dofs != run.n_fluid_dofs ||
         state.positions.size() != run.n_cells ||
         state.positions[0].size() != run.n_point_values)
       throw InputError("Immersed cells/Resume",
                        "true",
-                       "the checkpoint " + path() + " comes from a run on " +
-                         std::to_string(state.n_ranks) + " rank(s) with " +
-                         std::to_string(state.fluid.solution.size()) +
-                         " fluid DoFs; this run has " +
-                         std::to_string(run.n_ranks) + " rank(s) and " +
-                         std::to_string(run.n_fluid_dofs) +
-                         ": resume on the same number of ranks.");
+                       "the checkpoint " + path() + " comes from a run with " +
+                         std::to_string(state.fluid.n_dofs) +
+                         " fluid DoFs and " +
+                         std::to_string(state.positions.size()) +
+                         " cell(s); this run has " +
+                         std::to_string(run.n_fluid_dofs) + " and " +
+                         std::to_string(run.n_cells) +
+                         ": it was written for another mesh or layout.");
     if (state.record.step > run.n_steps)
       throw InputError("Time/Number of steps",
                        std::to_string(run.n_steps),

@@ -540,17 +540,18 @@ namespace rbc_ifem
       record.fluid_files.emplace_back(
         record.time, fluid.write_vtu(directory, record.step, frame_data()));
       write_pvd(directory, "flow", record.fluid_files, communicator);
-      if (Utilities::MPI::this_mpi_process(communicator) != 0)
-        return;
-      const std::vector<std::string> files =
-        cells.write_vtu(directory, "cell", record.step, frame_data());
+      // Each cell's files by the one rank that writes them; every rank
+      // keeps every cell's list, which a checkpoint holds.
+      const std::vector<std::string> files = cells.write_vtu(
+        directory, "cell", record.step, frame_data(), communicator);
       for (unsigned int c = 0; c < cells.size(); ++c)
         {
           record.cell_files[c].emplace_back(record.time, files[c]);
           write_pvd(directory,
                     "cell_" + std::to_string(c),
                     record.cell_files[c],
-                    communicator);
+                    communicator,
+                    CellPopulation::writer(c, communicator));
         }
     });
   }
@@ -584,11 +585,11 @@ namespace rbc_ifem
   {
     TimerOutput::Scope scope(timer, "checkpoint");
     CheckpointState    state;
-    state.n_ranks    = Utilities::MPI::n_mpi_processes(communicator);
-    state.parameters = parameter_file_text;
-    state.record     = record;
-    state.fluid      = fluid.state();
-    state.positions  = cells.positions();
+    state.parameters  = parameter_file_text;
+    state.record      = record;
+    state.fluid       = fluid.state();
+    state.fluid_cells = fluid.cell_values();
+    state.positions   = cells.positions();
     for (const RunObserver *observer : observers)
       state.observers.push_back(observer->state());
     write_together(communicator,
@@ -598,13 +599,12 @@ namespace rbc_ifem
   void
   IFEMSimulation::read_checkpoint()
   {
-    const CheckpointState state =
-      checkpoint.read({parameter_file_text,
-                       Utilities::MPI::n_mpi_processes(communicator),
-                       fluid.n_dofs(),
-                       cells.size(),
-                       cells.positions()[0].size(),
-                       parameters.time.n_steps});
+    const CheckpointState state = checkpoint.read({parameter_file_text,
+                                                   fluid.n_dofs(),
+                                                   cells.size(),
+                                                   cells.positions()[0].size(),
+                                                   parameters.time.n_steps},
+                                                  communicator);
     if (state.observers.size() != observers.size())
       throw InputError("Immersed cells/Resume",
                        "true",
@@ -616,9 +616,26 @@ namespace rbc_ifem
     for (unsigned int i = 0; i < observers.size(); ++i)
       observers[i]->restore(state.observers[i]);
     record = state.record;
-    fluid.set_state(state.fluid);
+    fluid.set_state(state.fluid, fluid_cells_here(state));
     cells.set_positions(state.positions);
     coupling->place(cells.points());
+  }
+
+  CellRecords
+  IFEMSimulation::fluid_cells_here(const CheckpointState &state) const
+  {
+    try
+      {
+        return state.fluid_cells.to_owners(
+          fluid.velocity_dof_handler().get_triangulation());
+      }
+    catch (const std::runtime_error &e)
+      {
+        throw InputError("Immersed cells/Resume",
+                         "true",
+                         "the checkpoint " + checkpoint.resumed_from() +
+                           " cannot be resumed: " + e.what() + ".");
+      }
   }
 
   void

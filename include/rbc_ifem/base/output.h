@@ -75,12 +75,14 @@ namespace rbc_ifem
                    const MPI_Comm                         communicator,
                    const FieldData                       &field_data = {});
 
-  /// Write NAME.pvd listing (time, file) pairs, rank 0 only.
+  /// Write NAME.pvd listing (time, file) pairs, on rank @p writer of
+  /// @p communicator only.
   void
   write_pvd(const std::string                                 &directory,
             const std::string                                 &name,
             const std::vector<std::pair<double, std::string>> &records,
-            const MPI_Comm                                     communicator);
+            const MPI_Comm                                     communicator,
+            const unsigned int                                 writer = 0);
 
   /**
    * Write @p path through @p writer, via the temporary file PATH.part and a
@@ -105,6 +107,19 @@ namespace rbc_ifem
   write_synced_file(const std::string &path, const std::string &bytes);
 
   /**
+   * Write @p head, rank 0's (the others' is ignored), and after it every
+   * rank's @p block in rank order as the file @p path, each rank its own
+   * part at once (MPI-IO), on the disk when it returns (collective on
+   * @p communicator). Throws OutputError with the cause on every rank that
+   * failed; call it in write_together().
+   */
+  void
+  write_in_rank_order(const std::string &path,
+                      const std::string &head,
+                      const std::string &block,
+                      const MPI_Comm     communicator);
+
+  /**
    * Rename @p from to @p to, replacing @p to in one step, and note @p to
    * among the files written (written_files()); throws OutputError with the
    * cause.
@@ -113,13 +128,16 @@ namespace rbc_ifem
   rename_written_file(const std::string &from, const std::string &to);
 
   /**
-   * What this process has written into @p directory, for the closing line of
-   * a run: the tables, parameter files, checkpoints and .pvd records by name
-   * (sorted), each subdirectory as "NAME/ (N files)". VTU and PVTU files are
-   * left out: the .pvd files list them, and a rank writes only its pieces.
+   * What the ranks of @p communicator (by default this process alone) have
+   * written into @p directory, for the closing line of a run (collective;
+   * the list is rank 0's): the
+   * tables, parameter files, checkpoints and .pvd records by name (sorted),
+   * each subdirectory as "NAME/ (N files)". VTU and PVTU files are left out:
+   * the .pvd files list them.
    */
   std::string
-  written_files(const std::string &directory);
+  written_files(const std::string &directory,
+                const MPI_Comm     communicator = MPI_COMM_SELF);
 
   /**
    * Create @p directory if needed and write @p text (parameter_text()) there

@@ -169,16 +169,26 @@ namespace rbc_ifem
     reference_volume(const unsigned int c) const;
 
     /**
-     * Each cell as NAME_C_CCCC.vtu (rank 0's job: call it there), with the
-     * displacement, the last forces (`force`, pN per node) and the same per
-     * unit area (`force_density`, pN/µm²), each file carrying @p field_data;
-     * returns the file names.
+     * Each cell as NAME_C_CCCC.vtu, with the displacement, the last forces
+     * (`force`, pN per node) and the same per unit area (`force_density`,
+     * pN/µm²), each file carrying @p field_data; returns every cell's file
+     * name. Call it on every rank of @p communicator: cell c is written by
+     * its rank writer(c) alone.
      */
     std::vector<std::string>
     write_vtu(const std::string &directory,
               const std::string &name,
               const unsigned int counter,
-              const FieldData   &field_data = {}) const;
+              const FieldData   &field_data   = {},
+              const MPI_Comm     communicator = MPI_COMM_SELF) const;
+
+    /**
+     * The rank of @p communicator that writes cell @p c's files: c modulo
+     * the ranks, so that the ranks share the writing (every rank holds
+     * every cell; issue 51 gives each cell an owner rank, which will).
+     */
+    static unsigned int
+    writer(const unsigned int c, const MPI_Comm communicator);
 
     /// The positions of every cell, for a checkpoint.
     const std::vector<Vector<double>> &

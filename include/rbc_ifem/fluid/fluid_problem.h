@@ -5,6 +5,7 @@
 #include <rbc_ifem/fluid/flow_drive.h>
 #include <rbc_ifem/fluid/fluid_vectors.h>
 #include <rbc_ifem/fluid/parameters.h>
+#include <rbc_ifem/geometry/cell_records.h>
 
 #include <deal.II/base/timer.h>
 #include <deal.II/dofs/dof_handler.h>
@@ -53,25 +54,26 @@ namespace rbc_ifem
   };
 
   /**
-   * Everything a restart needs to continue a FluidProblem: the solution
-   * (every entry, the velocity's in their DoF order and then the
-   * pressure's, for the same mesh on the same number of ranks), the frame
-   * velocity, and the residual scale the solver's tolerance refers to.
+   * What a restart needs to continue a FluidProblem besides the solution's
+   * values (FluidProblem::cell_values(), kept per cell so that any number
+   * of ranks can read them): the frame velocity, the residual scale the
+   * solver's tolerance refers to, and whether the values hold the solution
+   * one step earlier too. The same on every rank.
    */
   struct FluidState
   {
-    std::vector<double> solution;
-    /// The solution one step earlier, for the extrapolated first guess
-    /// (empty before the first step).
-    std::vector<double> earlier_solution;
-    double              frame_velocity = 0.;
-    double              residual_scale = 0.;
+    /// Whether there is a solution one step earlier, for the extrapolated
+    /// first guess (not before the first step).
+    bool                    has_earlier    = false;
+    double                  frame_velocity = 0.;
+    double                  residual_scale = 0.;
+    types::global_dof_index n_dofs = 0; ///< of the problem that wrote it
 
     template <class Archive>
     void
     serialize(Archive &archive, const unsigned int)
     {
-      archive &solution &earlier_solution &frame_velocity &residual_scale;
+      archive &has_earlier &frame_velocity &residual_scale &n_dofs;
     }
   };
 
@@ -164,13 +166,25 @@ namespace rbc_ifem
     double
     get_frame_velocity() const;
 
-    /// The state a restart needs (collective; the same on every rank).
+    /// What a restart needs besides cell_values(): the same on every rank.
     FluidState
     state() const;
 
-    /// Continue from @p state, taken from a problem with the same DoFs.
+    /**
+     * The solution's values on each locally owned cell, velocity then
+     * pressure in the cells' DoF order, and after them the same of the
+     * solution one step earlier if there is one (FluidState::has_earlier).
+     */
+    CellRecords
+    cell_values() const;
+
+    /**
+     * Continue from @p state and @p owned, the cell_values() of a problem on
+     * the same mesh (partitioned in any way), for the locally owned cells
+     * here (CellRecords::to_owners()).
+     */
     void
-    set_state(const FluidState &state);
+    set_state(const FluidState &state, const CellRecords &owned);
 
     /// @p v with the layout of the velocity block: owned entries and the
     /// ghosts a rank's cells touch. Load vectors are made with it.
@@ -282,13 +296,16 @@ namespace rbc_ifem
     start_step(const bool with_convection);
     double
     assemble_residual(const bool with_convection);
-    /// Every entry of @p v (owned) in DoF order, velocity then pressure,
-    /// the same on every rank.
-    std::vector<double>
-    gather(const FluidVector &v) const;
-    /// The owned entries of @p values (as gather() gives them) into @p v.
+    /// The velocity's and the pressure's DoFs on a cell together.
+    unsigned int
+    n_dofs_per_cell() const;
+    /// Set the owned entries of @p v from @p records, which hold the values
+    /// of a field as cell_values() gives them from their @p offset on; then
+    /// its ghosts.
     void
-    scatter(const std::vector<double> &values, FluidVector &v) const;
+    set_cell_values(const CellRecords &records,
+                    const unsigned int offset,
+                    FluidVector       &v) const;
     /// Add the velocity load's L v to @p result for @p v (owned, any
     /// values at constrained DoFs: zero constraints are applied first).
     void

@@ -185,6 +185,11 @@ namespace rbc_ifem
     /// Resume from the checkpoint (Checkpoint::read() checks it).
     void
     read_checkpoint();
+    /// The fluid's cell values of @p state (a rank's share of the blocks)
+    /// for the cells this rank owns; an InputError naming Immersed
+    /// cells/Resume if the checkpoint lacks some (collective).
+    CellRecords
+    fluid_cells_here(const CheckpointState &state) const;
     /// Write the tables and a checkpoint, then throw RunInterrupted.
     [[noreturn]] void
     save_and_stop(const int signal) const;

@@ -35,7 +35,7 @@ namespace
 {
   /// Every format and its layout fingerprint, oldest first.
   const std::vector<std::pair<unsigned int, std::uint32_t>> formats =
-    {{20261205, 1449497722}, {2026120502, 3940604644}};
+    {{20261205, 1449497722}, {2026120502, 3940604644}, {2026120601, 321118345}};
 
   /// The message of the InputError that reading @p directory's checkpoint
   /// for @p run throws, or "" if it is read.
@@ -44,7 +44,7 @@ namespace
   {
     try
       {
-        Checkpoint(directory).read(run);
+        Checkpoint(directory).read(run, MPI_COMM_WORLD);
       }
     catch (const InputError &e)
       {
@@ -94,20 +94,23 @@ main(int argc, char *argv[])
   const std::string directory = "checkpoint_format_test";
   std::filesystem::create_directory(directory);
   CheckpointState state;
-  state.n_ranks     = 1;
   state.parameters  = "set Output directory = " + directory + "\n";
   state.record      = RunRecord(1, false);
   state.record.step = 3;
   state.record.cells.add(0.5, 0);
-  state.fluid.solution  = {1., 2., 3.};
+  state.fluid.n_dofs = 3;
+  state.fluid_cells  = CellRecords(2);
+  state.fluid_cells.add(CellId(4, {1, 7}), std::vector<double>{1., 2.});
   state.positions       = {Vector<double>(6)};
   state.positions[0](4) = 7.;
-  const ResumingRun run{state.parameters, 1, 3, 1, 6, 10};
+  const ResumingRun run{state.parameters, 3, 1, 6, 10};
   Checkpoint(directory).write(state, MPI_COMM_WORLD);
-  const CheckpointState read = Checkpoint(directory).read(run);
+  const CheckpointState read = Checkpoint(directory).read(run, MPI_COMM_WORLD);
   check.holds("a state read back is the one written",
-              read.record.step == 3 &&
-                read.fluid.solution == state.fluid.solution &&
+              read.record.step == 3 && read.fluid.n_dofs == 3 &&
+                read.fluid_cells.size() == 1 &&
+                read.fluid_cells.cell(0) == CellId(4, {1, 7}) &&
+                read.fluid_cells.values(0)[1] == 2. &&
                 read.positions[0](4) == 7.);
 
   const std::string path = Checkpoint(directory).path();
@@ -138,7 +141,7 @@ main(int argc, char *argv[])
   Checkpoint(directory).write(state, MPI_COMM_WORLD);
   rewrite_header(path, "crc32", "1");
   Checkpoint            fallback(directory);
-  const CheckpointState earlier = fallback.read(run);
+  const CheckpointState earlier = fallback.read(run, MPI_COMM_WORLD);
   std::cout << "checkpoint.bin damaged: resumed from "
             << fallback.resumed_from() << ", step " << earlier.record.step
             << '\n';

@@ -24,14 +24,20 @@ namespace rbc_ifem
         forces.emplace_back(x.back().size());
         n_membrane_points += cell_membranes.back()->nodes().size();
       }
-    add_force(std::make_unique<MembraneElasticity>(cell_membranes));
+    add_force(
+      std::make_unique<MembraneElasticity>(cell_membranes, cell_owners));
   }
 
   void
   CellPopulation::share_work(const MPI_Comm comm)
   {
-    for (const std::unique_ptr<Membrane> &membrane : cell_membranes)
-      membrane->share_work(comm);
+    cell_owners = CellOwners(comm);
+  }
+
+  const CellOwners &
+  CellPopulation::owners() const
+  {
+    return cell_owners;
   }
 
   unsigned int
@@ -294,14 +300,14 @@ namespace rbc_ifem
                             const FieldData   &field_data,
                             const MPI_Comm     communicator) const
   {
+    const CellOwners         writers(communicator);
     std::vector<std::string> files;
     for (unsigned int c = 0; c < size(); ++c)
       {
         const std::string file = name + "_" + std::to_string(c) + "_" +
                                  Utilities::int_to_string(counter, 4);
         files.push_back(file + ".vtu");
-        if (writer(c, communicator) !=
-            Utilities::MPI::this_mpi_process(communicator))
+        if (!writers.owns(c))
           continue;
         const Vector<double> density =
           cell_membranes[c]->force_densities(x[c], forces[c]);
@@ -313,12 +319,6 @@ namespace rbc_ifem
                                      field_data);
       }
     return files;
-  }
-
-  unsigned int
-  CellPopulation::writer(const unsigned int c, const MPI_Comm communicator)
-  {
-    return c % Utilities::MPI::n_mpi_processes(communicator);
   }
 
   const std::vector<Vector<double>> &

@@ -131,11 +131,11 @@ namespace rbc_ifem
         pcout << "  squeezed into the lumen in " << stages << " stages"
               << std::endl;
       }
-    // The membranes are replicated; from here on their forces and stiffness
-    // are shared out over the ranks, which compute them together. The
-    // squeeze above runs on every rank alone, so that its L-BFGS path, and
-    // the squeezed shape within its tolerance, are the same for any number
-    // of ranks.
+    // The membranes are replicated; from here on each cell's forces and
+    // stiffness are computed by its owner rank and added up over the ranks.
+    // The squeeze above runs on every rank alone, so that its L-BFGS path,
+    // and the squeezed shape within its tolerance, are the same for any
+    // number of ranks.
     cells.share_work(communicator);
     std::vector<std::shared_ptr<const Triangulation<3>>> coarser_meshes;
     {
@@ -182,6 +182,7 @@ namespace rbc_ifem
           << " cells, " << fluid.n_dofs() << " DoFs; "
           << multigrid_levels_text(fluid) << std::endl;
     run_report.startup(cells, stable, mesh_size, time_step);
+    report_load_balance();
     if (parameters.immersed.diffusion_interval > 0)
       check_uptake_input();
     if (parameters.immersed.resume)
@@ -540,8 +541,8 @@ namespace rbc_ifem
       record.fluid_files.emplace_back(
         record.time, fluid.write_vtu(directory, record.step, frame_data()));
       write_pvd(directory, "flow", record.fluid_files, communicator);
-      // Each cell's files by the one rank that writes them; every rank
-      // keeps every cell's list, which a checkpoint holds.
+      // Each cell's files by the one rank that owns it; every rank keeps
+      // every cell's list, which a checkpoint holds.
       const std::vector<std::string> files = cells.write_vtu(
         directory, "cell", record.step, frame_data(), communicator);
       for (unsigned int c = 0; c < cells.size(); ++c)
@@ -551,7 +552,7 @@ namespace rbc_ifem
                     "cell_" + std::to_string(c),
                     record.cell_files[c],
                     communicator,
-                    CellPopulation::writer(c, communicator));
+                    cells.owners().owner(c));
         }
     });
   }
@@ -695,7 +696,16 @@ namespace rbc_ifem
                        cells,
                        record.step - first_step,
                        clock.wall_time());
+    report_load_balance();
     timer.print_summary();
+  }
+
+  void
+  IFEMSimulation::report_load_balance() const
+  {
+    run_report.load_balance(cells,
+                            coupling->n_locally_owned_points(),
+                            triangulation.n_locally_owned_active_cells());
   }
 
   void

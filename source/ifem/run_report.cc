@@ -11,6 +11,7 @@ namespace rbc_ifem
                        const MPI_Comm    communicator)
     : parameters(parameters)
     , domain(domain)
+    , communicator(communicator)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
   {}
 
@@ -119,6 +120,27 @@ namespace rbc_ifem
           << wall_seconds / std::max(1u, n_run) << " s per step" << std::endl;
     summarize_dm(record);
     summarize_cells(cells);
+  }
+
+  void
+  RunReport::load_balance(const CellPopulation &cells,
+                          const unsigned int    points_here,
+                          const unsigned int    fluid_cells_here) const
+  {
+    unsigned int owned = 0;
+    for (unsigned int c = 0; c < cells.size(); ++c)
+      owned += cells.owners().owns(c);
+    const auto spread = [this](const unsigned int n) {
+      const auto range = Utilities::MPI::min_max_avg(n, communicator);
+      return std::to_string(static_cast<unsigned int>(range.min)) + "-" +
+             std::to_string(static_cast<unsigned int>(range.max));
+    };
+    pcout << "  per rank, least to most over "
+          << Utilities::MPI::n_mpi_processes(communicator) << ": owns "
+          << spread(owned) << " of the " << cells.size()
+          << " red cells it holds (CellOwners), " << spread(points_here)
+          << " membrane points in its " << spread(fluid_cells_here)
+          << " fluid cells" << std::endl;
   }
 
   void

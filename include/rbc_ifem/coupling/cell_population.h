@@ -2,6 +2,7 @@
 #define rbc_ifem_coupling_cell_population_h
 
 #include <rbc_ifem/coupling/cell_force.h>
+#include <rbc_ifem/coupling/cell_owners.h>
 #include <rbc_ifem/geometry/cell_membranes.h>
 #include <rbc_ifem/geometry/cell_placement.h>
 #include <rbc_ifem/geometry/membrane_surfaces.h>
@@ -65,12 +66,17 @@ namespace rbc_ifem
     operator=(const CellPopulation &) = delete;
 
     /**
-     * Share the membranes' force and stiffness loops out over the ranks of
-     * @p comm (Membrane::share_work()): every rank must then compute the
-     * forces and the stiffness together.
+     * Share the cells out over the ranks of @p comm (CellOwners): each
+     * cell's membrane forces and stiffness are then computed by its owner
+     * alone and added up over the ranks, so that every rank must compute
+     * the forces and the stiffness together.
      */
     void
     share_work(const MPI_Comm comm);
+
+    /// Which rank owns which cell (share_work()).
+    const CellOwners &
+    owners() const;
 
     unsigned int
     size() const;
@@ -172,8 +178,8 @@ namespace rbc_ifem
      * Each cell as NAME_C_CCCC.vtu, with the displacement, the last forces
      * (`force`, pN per node) and the same per unit area (`force_density`,
      * pN/µm²), each file carrying @p field_data; returns every cell's file
-     * name. Call it on every rank of @p communicator: cell c is written by
-     * its rank writer(c) alone.
+     * name. Call it on every rank of @p communicator: each cell is written
+     * by the rank of @p communicator that owns it (CellOwners) alone.
      */
     std::vector<std::string>
     write_vtu(const std::string &directory,
@@ -181,14 +187,6 @@ namespace rbc_ifem
               const unsigned int counter,
               const FieldData   &field_data   = {},
               const MPI_Comm     communicator = MPI_COMM_SELF) const;
-
-    /**
-     * The rank of @p communicator that writes cell @p c's files: c modulo
-     * the ranks, so that the ranks share the writing (every rank holds
-     * every cell; issue 51 gives each cell an owner rank, which will).
-     */
-    static unsigned int
-    writer(const unsigned int c, const MPI_Comm communicator);
 
     /// The positions of every cell, for a checkpoint.
     const std::vector<Vector<double>> &
@@ -203,9 +201,11 @@ namespace rbc_ifem
     std::vector<Tensor<1, 3>>
     per_point(const std::vector<Vector<double>> &values) const;
 
-    const CellMembranes                     references;
-    const MappingQ<2, 3>                    flat_mapping;
-    std::vector<std::unique_ptr<Membrane>>  cell_membranes;
+    const CellMembranes                    references;
+    const MappingQ<2, 3>                   flat_mapping;
+    std::vector<std::unique_ptr<Membrane>> cell_membranes;
+    /// Declared before the forces, which hold it.
+    CellOwners                              cell_owners;
     std::vector<Vector<double>>             x;
     std::vector<Vector<double>>             forces;
     unsigned int                            n_membrane_points = 0;

@@ -2,6 +2,7 @@
 #define rbc_ifem_coupling_membrane_forces_h
 
 #include <rbc_ifem/coupling/cell_force.h>
+#include <rbc_ifem/coupling/cell_owners.h>
 #include <rbc_ifem/membrane/membrane.h>
 
 #include <memory>
@@ -12,14 +13,18 @@ namespace rbc_ifem
   /**
    * The membranes' own mechanics as a CellForce: every cell's Membrane
    * energy (in-plane law, bending, area and volume) and its exact forces.
-   * Internal: it holds no cell in place.
+   * Internal: it holds no cell in place. Each cell's forces and tangent
+   * stiffness are computed by its owner rank alone, and every rank gets
+   * all cells' in one reduction (CellOwners::add_up()): the collectives do
+   * not grow with the number of cells.
    */
   class MembraneElasticity : public CellForce
   {
   public:
-    /// The membranes of the cells, in the population's order.
-    explicit MembraneElasticity(
-      const std::vector<std::unique_ptr<Membrane>> &membranes);
+    /// The membranes of the cells, in the population's order, and the
+    /// ranks that own them (held by reference: they may change later).
+    MembraneElasticity(const std::vector<std::unique_ptr<Membrane>> &membranes,
+                       const CellOwners                             &owners);
 
     CellForceReport
     add_forces(const std::vector<Vector<double>> &positions,
@@ -30,8 +35,7 @@ namespace rbc_ifem
 
   private:
     const std::vector<std::unique_ptr<Membrane>> &membranes;
-    /// One cell's forces, before they are added.
-    mutable Vector<double> cell_forces;
+    const CellOwners                             &owners;
   };
 
   /**

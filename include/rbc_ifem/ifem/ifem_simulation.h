@@ -129,6 +129,9 @@ namespace rbc_ifem
     /// The tables, fields and DM of t = 0.
     void
     record_start();
+    /// RunReport::load_balance() of this rank's points and fluid cells.
+    void
+    report_load_balance() const;
     /**
      * What step record.step does after @p stepped (the fluid's report):
      * @p due's actions, flow.csv and the progress line, with the time left

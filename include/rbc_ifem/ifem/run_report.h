@@ -16,7 +16,8 @@ namespace rbc_ifem
    * What a flowing run tells its user on rank 0's standard output besides
    * its progress lines: at the start, the cells, the dimensionless numbers
    * and the coupling's time step against its stability estimate, with the
-   * warnings they call for; at the end, the summary.
+   * warnings they call for; at the end, the summary; at both, what each
+   * rank holds (load_balance()).
    */
   class RunReport
   {
@@ -51,6 +52,17 @@ namespace rbc_ifem
             const unsigned int    n_run,
             const double          wall_seconds) const;
 
+    /**
+     * What each rank holds and computes, least to most over the ranks
+     * (collective): the red cells it owns (CellOwners) of those it holds,
+     * @p points_here membrane points in its @p fluid_cells_here fluid
+     * cells. The spread is the load balance (doc/scaling.md).
+     */
+    void
+    load_balance(const CellPopulation &cells,
+                 const unsigned int    points_here,
+                 const unsigned int    fluid_cells_here) const;
+
   private:
     /// The start-up warnings.
     void
@@ -67,6 +79,7 @@ namespace rbc_ifem
 
     const Parameters  &parameters;
     const FlowDomain  &domain;
+    const MPI_Comm     communicator;
     ConditionalOStream pcout;
   };
 } // namespace rbc_ifem

@@ -1,0 +1,140 @@
+// mpirun: 2 3
+
+// The cells' mechanics computed by their owners (CellPopulation::share_work(),
+// CellOwners): five Evans-Fung cells at randomly perturbed positions, all
+// energy terms on, give every rank the energy, the forces, the products with
+// the tangent stiffness and its diagonal of the same population computed
+// alone, to round-off. Runs on 2 and 3 ranks (five cells share out unevenly)
+// and checks that every cell has one owner.
+
+#include <rbc_ifem/coupling/cell_owners.h>
+#include <rbc_ifem/coupling/cell_population.h>
+
+#include "check.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <cmath>
+#include <random>
+
+using namespace rbc_ifem;
+
+namespace
+{
+  constexpr unsigned int n_cells = 5;
+
+  std::vector<CellPlacement>
+  train()
+  {
+    std::vector<CellPlacement> cells;
+    for (unsigned int c = 0; c < n_cells; ++c)
+      cells.push_back(CellPlacement{Point<3>(5. + 10. * c, 0., 0.),
+                                    Tensor<1, 3>({1., 0., 0.})});
+    return cells;
+  }
+
+  MembraneParameters
+  every_term()
+  {
+    MembraneParameters membrane;
+    membrane.bending_modulus = 0.2;
+    membrane.area_penalty    = 500.;
+    membrane.volume_penalty  = 500.;
+    return membrane;
+  }
+
+  /// @p n random vectors of entries in (-@p amplitude, @p amplitude): the
+  /// same on every rank.
+  std::vector<Tensor<1, 3>>
+  random_points(const unsigned int n,
+                const double       amplitude,
+                std::mt19937      &random)
+  {
+    std::uniform_real_distribution<double> uniform(-amplitude, amplitude);
+    std::vector<Tensor<1, 3>>              result(n);
+    for (Tensor<1, 3> &t : result)
+      for (unsigned int d = 0; d < 3; ++d)
+        t[d] = uniform(random);
+    return result;
+  }
+
+  /// |a - b| / |b| over every point.
+  double
+  relative_difference(const std::vector<Tensor<1, 3>> &a,
+                      const std::vector<Tensor<1, 3>> &b)
+  {
+    double difference = 0., norm = 0.;
+    for (unsigned int i = 0; i < b.size(); ++i)
+      {
+        difference += (a[i] - b[i]).norm_square();
+        norm += b[i].norm_square();
+      }
+    return std::sqrt(difference / norm);
+  }
+} // namespace
+
+int
+main(int argc, char *argv[])
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
+    std::cout.setstate(std::ios::failbit); // every rank checks, rank 0 reports
+  Checker      check;
+  std::mt19937 random(3);
+
+  CellParameters cell_parameters;
+  cell_parameters.surface_refinements = 2;
+  CellPopulation alone(train(), cell_parameters, every_term());
+  CellPopulation owned(train(), cell_parameters, every_term());
+  owned.share_work(MPI_COMM_WORLD);
+
+  // Both at the same perturbed positions: move every point by a random
+  // velocity for a unit time.
+  const std::vector<Tensor<1, 3>> velocities =
+    random_points(alone.n_points(), 0.05, random);
+  alone.move(velocities, 1.);
+  owned.move(velocities, 1.);
+
+  const std::vector<Tensor<1, 3>> f_alone = alone.compute_forces(),
+                                  f_owned = owned.compute_forces();
+  check.at_most("energy, by owners against alone (relative)",
+                std::abs(owned.energy() - alone.energy()) / alone.energy(),
+                1e-13);
+  check.at_most("forces, by owners against alone (relative)",
+                relative_difference(f_owned, f_alone),
+                1e-12);
+
+  alone.linearize();
+  owned.linearize();
+  const std::vector<Tensor<1, 3>> v =
+    random_points(alone.n_points(), 1., random);
+  check.at_most("K v, by owners against alone (relative)",
+                relative_difference(owned.stiffness_product(v),
+                                    alone.stiffness_product(v)),
+                1e-12);
+  check.at_most("diag(K), by owners against alone (relative)",
+                relative_difference(owned.stiffness_diagonal(),
+                                    alone.stiffness_diagonal()),
+                1e-12);
+
+  // Every cell has one owner: each rank counts the cells it owns.
+  const CellOwners  &owners = owned.owners();
+  const unsigned int rank   = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+  unsigned int       mine   = 0;
+  bool               agrees = true;
+  for (unsigned int c = 0; c < n_cells; ++c)
+    {
+      mine += owners.owns(c);
+      agrees = agrees && owners.owns(c) == (owners.owner(c) == rank);
+    }
+  check.near("cells owned, summed over the ranks",
+             Utilities::MPI::sum(mine, MPI_COMM_WORLD),
+             n_cells,
+             0.);
+  check.holds("owns(c) is owner(c) == this rank on every rank",
+              Utilities::MPI::min(static_cast<unsigned int>(agrees),
+                                  MPI_COMM_WORLD) == 1);
+  check.holds("each rank owns a part of the cells, not all",
+              Utilities::MPI::max(mine, MPI_COMM_WORLD) < n_cells);
+  return check.exit_code();
+}

@@ -5,11 +5,12 @@
 # yardstick): N uniform cells, one per 5 µm of a periodic capillary of
 # 5N µm (the prm/default.prm cell and meshes, semi-implicit at its step, no
 # DM), for each N of CELLS (default 4 16 64) on RANKS ranks (default 2).
-# Each N runs 1 step and 3 steps; the difference over 2 is one step's:
-#  - seconds per step, and per cell (from the runs' summary lines: the
-#    time loop's wall time);
+# Each N runs 1 step and 3 steps:
+#  - seconds per step, and per cell: in the 3-step run, the wall time from
+#    the end of step 1 to the end of step 3 over 2 (the progress lines), so
+#    that the machine's noise between two runs does not enter;
 #  - collective MPI calls and point-to-point bytes sent per step, the
-#    largest over the ranks, counted by benchmarks/mpi_counts.c (built here
+#    largest over the ranks, the difference of the two runs over 2, counted by benchmarks/mpi_counts.c (built here
 #    with mpicc and preloaded; it changes nothing the calls do);
 #  - the peak memory of the largest rank in the 3-step run (the program's
 #    report).
@@ -35,8 +36,12 @@ run() {
     --set "Geometry/Periodic=true" --set "Geometry/Capillary length=$((5 * $1))" \
     --set "Layout/Number of cells=$1" >"log_$1_$2.txt"
 }
-# loop_seconds N STEPS: the time loop's wall time of that run
-loop_seconds() { sed -n 's/.*summary: .* steps in \([0-9.]*\) s.*/\1/p' "log_$1_$2.txt"; }
+# wall_after N STEP: the wall time at the end of step STEP of the 3-step run
+# of N cells [s] (its progress line: "[wall 12.3 s" or "[wall 1 min 05 s")
+wall_after() {
+  sed -n "s/^  step $2 of 3,.*\[wall \([^,]*\),.*/\1/p" "log_$1_3.txt" |
+    awk '{print ($2 == "min") ? 60 * $1 + $3 : $1}'
+}
 # per_step N COLUMN: the largest over the ranks of (3-step - 1-step) / 2 of
 # that column of the counts (2 collectives, 4 bytes)
 per_step() {
@@ -51,7 +56,7 @@ for n in "${cells[@]}"; do
   run "$n" 1
   run "$n" 3
   dofs=$(sed -n 's/.*fluid mesh: [0-9]* cells, \([0-9]*\) DoFs.*/\1/p' "log_${n}_3.txt")
-  step=$(awk -v a="$(loop_seconds "$n" 1)" -v b="$(loop_seconds "$n" 3)" 'BEGIN {printf "%.2f", (b - a) / 2}')
+  step=$(awk -v a="$(wall_after "$n" 1)" -v b="$(wall_after "$n" 3)" 'BEGIN {printf "%.2f", (b - a) / 2}')
   per_cell=$(awk -v s="$step" -v n="$n" 'BEGIN {printf "%.3f", s / n}')
   memory=$(sed -n 's/.*peak memory: \([0-9.]*\) MB.*/\1/p' "log_${n}_3.txt")
   results_row "$ranks" "$n" "$dofs" "$step" "$per_cell" "$(per_step "$n" 2)" \

@@ -31,7 +31,16 @@ namespace rbc_ifem
   void
   CellPopulation::share_work(const MPI_Comm comm)
   {
-    cell_owners = CellOwners(comm);
+    // With at least as many cells as ranks each cell has one owner, which
+    // computes it alone; with fewer, one owner per cell would leave ranks
+    // idle (a single cell on 2 ranks: its stiffness took twice as long),
+    // so every rank computes every cell, each membrane's cell loops split
+    // over all ranks.
+    if (size() >= Utilities::MPI::n_mpi_processes(comm))
+      cell_owners = CellOwners(comm);
+    else
+      for (const std::unique_ptr<Membrane> &membrane : cell_membranes)
+        membrane->share_work(comm);
   }
 
   const CellOwners &

@@ -131,8 +131,9 @@ namespace rbc_ifem
         pcout << "  squeezed into the lumen in " << stages << " stages"
               << std::endl;
       }
-    // The membranes are replicated; from here on each cell's forces and
-    // stiffness are computed by its owner rank and added up over the ranks.
+    // The membranes are replicated; from here on their forces and stiffness
+    // are shared out over the ranks (by cell, or within each membrane when
+    // there are fewer cells than ranks), which compute them together.
     // The squeeze above runs on every rank alone, so that its L-BFGS path,
     // and the squeezed shape within its tolerance, are the same for any
     // number of ranks.
@@ -541,8 +542,9 @@ namespace rbc_ifem
       record.fluid_files.emplace_back(
         record.time, fluid.write_vtu(directory, record.step, frame_data()));
       write_pvd(directory, "flow", record.fluid_files, communicator);
-      // Each cell's files by the one rank that owns it; every rank keeps
-      // every cell's list, which a checkpoint holds.
+      // Each cell's files by one rank; every rank keeps every cell's list,
+      // which a checkpoint holds.
+      const CellOwners               writers(communicator);
       const std::vector<std::string> files = cells.write_vtu(
         directory, "cell", record.step, frame_data(), communicator);
       for (unsigned int c = 0; c < cells.size(); ++c)
@@ -552,7 +554,7 @@ namespace rbc_ifem
                     "cell_" + std::to_string(c),
                     record.cell_files[c],
                     communicator,
-                    cells.owners().owner(c));
+                    writers.owner(c));
         }
     });
   }

@@ -135,12 +135,16 @@ namespace rbc_ifem
       return std::to_string(static_cast<unsigned int>(range.min)) + "-" +
              std::to_string(static_cast<unsigned int>(range.max));
     };
-    pcout << "  per rank, least to most over "
-          << Utilities::MPI::n_mpi_processes(communicator) << ": owns "
-          << spread(owned) << " of the " << cells.size()
-          << " red cells it holds (CellOwners), " << spread(points_here)
-          << " membrane points in its " << spread(fluid_cells_here)
-          << " fluid cells" << std::endl;
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
+    pcout << "  per rank, least to most over " << n_ranks << ": "
+          << (n_ranks > 1 && !cells.owners().shared() ?
+                "a share of each of the " + std::to_string(cells.size()) +
+                  " red cells it holds (fewer cells than ranks)" :
+                "owns " + spread(owned) + " of the " +
+                  std::to_string(cells.size()) +
+                  " red cells it holds (CellOwners)")
+          << ", " << spread(points_here) << " membrane points in its "
+          << spread(fluid_cells_here) << " fluid cells" << std::endl;
   }
 
   void

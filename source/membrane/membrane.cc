@@ -241,7 +241,9 @@ namespace rbc_ifem
   }
 
   Membrane::Sums
-  Membrane::sum_cell_terms(const Vector<double> &x) const
+  Membrane::sum_cell_terms(
+    const Vector<double>                       &x,
+    const std::pair<unsigned int, unsigned int> cells) const
   {
     Sums sums;
     sums.laplacian.resize(n_nodes);
@@ -250,11 +252,67 @@ namespace rbc_ifem
     // The law is chosen once per call, outside the loop over the cells.
     std::visit(
       [&](const auto &law) {
-        for (unsigned int c = 0; c < cell_dofs.size(); ++c)
+        for (unsigned int c = cells.first; c < cells.second; ++c)
           add_cell_terms(c, cell_terms(law, c, local_positions(c, x)), sums);
       },
       elastic_law);
     return sums;
+  }
+
+  Membrane::Sums
+  Membrane::sum_cell_terms(const Vector<double> &x) const
+  {
+    return sum_cell_terms(x, {0, cell_dofs.size()});
+  }
+
+  Membrane::Sums
+  Membrane::sum_shared_cell_terms(const Vector<double> &x) const
+  {
+    Sums sums = sum_cell_terms(x, share(cell_dofs.size()));
+    if (n_ranks(communicator) == 1)
+      return sums;
+    // One reduction for all sums, packed in one array.
+    std::vector<double> packed{sums.in_plane, sums.area, sums.volume};
+    packed.reserve(3 + 7 * n_nodes);
+    for (unsigned int i = 0; i < n_nodes; ++i)
+      {
+        for (unsigned int e = 0; e < 3; ++e)
+          packed.insert(packed.end(),
+                        {sums.laplacian[i][e], sums.normal[i][e]});
+        packed.push_back(sums.mass[i]);
+      }
+    add_up_over_ranks(make_array_view(packed), communicator);
+    auto value    = packed.begin();
+    sums.in_plane = *value++;
+    sums.area     = *value++;
+    sums.volume   = *value++;
+    for (unsigned int i = 0; i < n_nodes; ++i)
+      {
+        for (unsigned int e = 0; e < 3; ++e)
+          {
+            sums.laplacian[i][e] = *value++;
+            sums.normal[i][e]    = *value++;
+          }
+        sums.mass[i] = *value++;
+      }
+    return sums;
+  }
+
+  std::pair<unsigned int, unsigned int>
+  Membrane::share(const unsigned int n) const
+  {
+    const unsigned int size = n_ranks(communicator),
+                       rank = size == 1 ?
+                                0 :
+                                Utilities::MPI::this_mpi_process(communicator);
+    return {static_cast<unsigned int>(std::uint64_t(n) * rank / size),
+            static_cast<unsigned int>(std::uint64_t(n) * (rank + 1) / size)};
+  }
+
+  void
+  Membrane::share_work(const MPI_Comm comm)
+  {
+    communicator = comm;
   }
 
   void
@@ -328,7 +386,7 @@ namespace rbc_ifem
                               Vector<double>       &forces) const
   {
     MembraneEnergy    energy;
-    const Multipliers d = energy_derivatives(sum_cell_terms(x), energy);
+    const Multipliers d = energy_derivatives(sum_shared_cell_terms(x), energy);
     if (forces.size() == 0)
       return energy;
 
@@ -342,7 +400,8 @@ namespace rbc_ifem
       using ADNumber = Sacado::Fad::SFad<double, 9>;
       Vector<double> values(fe.n_dofs_per_cell()), z(9), dphi_dz(9),
         gradient(fe.n_dofs_per_cell());
-      for (unsigned int c = 0; c < cell_dofs.size(); ++c)
+      const auto [begin, end] = share(cell_dofs.size());
+      for (unsigned int c = begin; c < end; ++c)
         {
           x.extract_subvector_to(cell_dofs[c].begin(),
                                  cell_dofs[c].end(),
@@ -364,6 +423,8 @@ namespace rbc_ifem
         }
     };
     std::visit(subtract_point_gradients, elastic_law);
+    if (n_ranks(communicator) > 1)
+      add_up_over_ranks(make_array_view(forces), communicator);
     return energy;
   }
 

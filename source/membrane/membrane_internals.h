@@ -8,6 +8,7 @@
 
 #include <rbc_ifem/membrane/membrane.h>
 
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/tensor.h>
 #include <deal.II/differentiation/ad/sacado_product_types.h>
 
@@ -68,6 +69,25 @@ namespace rbc_ifem
 
   namespace MembraneInternals
   {
+    /// The number of ranks of @p comm; 1 in a program that never started
+    /// MPI (a serial test).
+    inline unsigned int
+    n_ranks(const MPI_Comm comm)
+    {
+      return Utilities::MPI::job_supports_mpi() ?
+               Utilities::MPI::n_mpi_processes(comm) :
+               1;
+    }
+
+    /// Replace @p values on every rank of @p comm by their sum over the ranks.
+    inline void
+    add_up_over_ranks(const ArrayView<double> &values, const MPI_Comm comm)
+    {
+      Utilities::MPI::sum(ArrayView<const double>(values.data(), values.size()),
+                          comm,
+                          values);
+    }
+
     /// The surface at one quadrature point, from its tangents.
     template <typename Number>
     struct SurfacePoint

@@ -67,10 +67,11 @@ namespace rbc_ifem
    */
   struct Membrane::SumGradients
   {
-    /// ∂A/∂x and ∂V/∂x.
+    /// ∂A/∂x and ∂V/∂x, summed over the ranks.
     Vector<double> area, volume;
     /// Per cell, the 7 (n_a) × (cell DoFs) derivatives of its terms of the
-    /// sums (y, m, w) of each local node a (rows 7a to 7a + 6).
+    /// sums (y, m, w) of each local node a (rows 7a to 7a + 6): only of
+    /// the cells this rank needs (cells_for_sum_gradients()).
     std::vector<FullMatrix<double>> nodal_sums;
   };
 
@@ -78,7 +79,16 @@ namespace rbc_ifem
   MembraneStiffness::vmult_add(Vector<double>       &dst,
                                const Vector<double> &src) const
   {
-    local.vmult_add(dst, src);
+    if (n_ranks(communicator) == 1)
+      local.vmult_add(dst, src);
+    else
+      {
+        // Each rank holds its share of the sparse part: sum the products.
+        Vector<double> product(dst.size());
+        local.vmult(product, src);
+        add_up_over_ranks(make_array_view(product), communicator);
+        dst += product;
+      }
     for (const auto &[c, gradient] : rank_one)
       dst.add(c * (gradient * src), gradient);
   }
@@ -86,8 +96,12 @@ namespace rbc_ifem
   void
   MembraneStiffness::add_diagonal(Vector<double> &diagonal) const
   {
-    for (unsigned int i = 0; i < diagonal.size(); ++i)
-      diagonal[i] += local.diag_element(i);
+    Vector<double> sparse(diagonal.size());
+    for (unsigned int i = 0; i < sparse.size(); ++i)
+      sparse[i] = local.diag_element(i);
+    if (n_ranks(communicator) > 1)
+      add_up_over_ranks(make_array_view(sparse), communicator);
+    diagonal += sparse;
     for (const auto &[c, gradient] : rank_one)
       for (unsigned int i = 0; i < diagonal.size(); ++i)
         diagonal[i] += c * gradient[i] * gradient[i];
@@ -162,11 +176,12 @@ namespace rbc_ifem
   void
   Membrane::stiffness(const Vector<double> &x, MembraneStiffness &K) const
   {
-    const Sums        sums = sum_cell_terms(x);
+    const Sums        sums = sum_shared_cell_terms(x);
     MembraneEnergy    energy;
     const Multipliers d = energy_derivatives(sums, energy);
     K.local.reinit(stiffness_sparsity);
     K.rank_one.clear();
+    K.communicator = communicator;
 
     // Every integrand depends on the DoFs only through the point's position
     // and tangents z = L_q x (9 numbers), so derivatives in the cell's DoFs
@@ -183,12 +198,27 @@ namespace rbc_ifem
                               gradients.volume);
   }
 
+  std::vector<bool>
+  Membrane::cells_for_sum_gradients() const
+  {
+    const auto [first_cell, end_cell] = share(cell_dofs.size());
+    const auto [first_node, end_node] = share(n_nodes);
+    std::vector<bool> needed(cell_dofs.size(), false);
+    std::fill(needed.begin() + first_cell, needed.begin() + end_cell, true);
+    for (unsigned int i = first_node; i < end_node; ++i)
+      for (const auto &[c, a] : cells_around_node[i])
+        needed[c] = true;
+    return needed;
+  }
+
   Membrane::SumGradients
   Membrane::sum_gradients(const Vector<double> &x) const
   {
-    using First          = Sacado::Fad::SFad<double, 9>;
-    const unsigned int n = fe.n_dofs_per_cell();
-    SumGradients       gradients;
+    using First                       = Sacado::Fad::SFad<double, 9>;
+    const unsigned int n              = fe.n_dofs_per_cell();
+    const auto [first_cell, end_cell] = share(cell_dofs.size());
+    const std::vector<bool> needed    = cells_for_sum_gradients();
+    SumGradients            gradients;
     gradients.area.reinit(dof_handler.n_dofs());
     gradients.volume.reinit(dof_handler.n_dofs());
     gradients.nodal_sums.resize(cell_dofs.size());
@@ -196,6 +226,9 @@ namespace rbc_ifem
     Vector<double>     values(n), z(9);
     for (unsigned int c = 0; c < cell_dofs.size(); ++c)
       {
+        if (!needed[c])
+          continue;
+        const bool own = c >= first_cell && c < end_cell;
         x.extract_subvector_to(cell_dofs[c].begin(),
                                cell_dofs[c].end(),
                                values.begin());
@@ -212,13 +245,19 @@ namespace rbc_ifem
               for (unsigned int j = 0; j < 9; ++j)
                 D(r, j) = t[r].dx(j);
             D.mmult(DL, point_maps[q]);
-            for (unsigned int k = 0; k < n; ++k)
-              {
-                gradients.area[cell_dofs[c][k]] += DL(0, k);
-                gradients.volume[cell_dofs[c][k]] += DL(1, k);
-              }
+            if (own)
+              for (unsigned int k = 0; k < n; ++k)
+                {
+                  gradients.area[cell_dofs[c][k]] += DL(0, k);
+                  gradients.volume[cell_dofs[c][k]] += DL(1, k);
+                }
             add_nodal_sum_derivatives(q, DL, J);
           }
+      }
+    if (n_ranks(communicator) > 1)
+      {
+        add_up_over_ranks(make_array_view(gradients.area), communicator);
+        add_up_over_ranks(make_array_view(gradients.volume), communicator);
       }
     return gradients;
   }
@@ -248,14 +287,15 @@ namespace rbc_ifem
                               const Multipliers    &d,
                               SparseMatrix<double> &K) const
   {
-    const unsigned int n = fe.n_dofs_per_cell();
+    const unsigned int n              = fe.n_dofs_per_cell();
+    const auto [first_cell, end_cell] = share(cell_dofs.size());
     // The law is chosen once, outside the loop over the cells.
     const auto add_with_law = [&](const auto &law) {
       using First  = Sacado::Fad::SFad<double, 9>;
       using Second = Sacado::Fad::SFad<First, 9>;
       FullMatrix<double> cell_matrix(n, n), H(9, 9), HL(9, n);
       Vector<double>     values(n), z(9);
-      for (unsigned int c = 0; c < cell_dofs.size(); ++c)
+      for (unsigned int c = first_cell; c < end_cell; ++c)
         {
           x.extract_subvector_to(cell_dofs[c].begin(),
                                  cell_dofs[c].end(),
@@ -288,7 +328,8 @@ namespace rbc_ifem
     const std::vector<FullMatrix<double>> &nodal_sum_gradients,
     SparseMatrix<double>                  &K) const
   {
-    for (unsigned int i = 0; i < n_nodes; ++i)
+    const auto [first_node, end_node] = share(n_nodes);
+    for (unsigned int i = first_node; i < end_node; ++i)
       {
         const std::vector<types::global_dof_index> patch = patch_dofs(i);
         FullMatrix<double> J(7, patch.size()), BJ(7, patch.size()),

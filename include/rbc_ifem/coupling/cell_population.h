@@ -66,15 +66,18 @@ namespace rbc_ifem
     operator=(const CellPopulation &) = delete;
 
     /**
-     * Share the cells out over the ranks of @p comm (CellOwners): each
-     * cell's membrane forces and stiffness are then computed by its owner
-     * alone and added up over the ranks, so that every rank must compute
-     * the forces and the stiffness together.
+     * Share the cells' mechanics out over the ranks of @p comm, so that
+     * every rank must then compute the forces and the stiffness together.
+     * With at least as many cells as ranks, each cell has an owner rank
+     * (CellOwners) that computes its forces and stiffness alone, added up
+     * over the ranks in one reduction; with fewer, every rank takes a share
+     * of every membrane's cell loops (Membrane::share_work()).
      */
     void
     share_work(const MPI_Comm comm);
 
-    /// Which rank owns which cell (share_work()).
+    /// Which rank owns which cell (share_work(); with fewer cells than
+    /// ranks every rank computes every cell, as on one rank).
     const CellOwners &
     owners() const;
 
@@ -178,8 +181,8 @@ namespace rbc_ifem
      * Each cell as NAME_C_CCCC.vtu, with the displacement, the last forces
      * (`force`, pN per node) and the same per unit area (`force_density`,
      * pN/µm²), each file carrying @p field_data; returns every cell's file
-     * name. Call it on every rank of @p communicator: each cell is written
-     * by the rank of @p communicator that owns it (CellOwners) alone.
+     * name. Call it on every rank of @p communicator: cell c is written by
+     * rank CellOwners(@p communicator).owner(c) alone.
      */
     std::vector<std::string>
     write_vtu(const std::string &directory,

@@ -5,6 +5,7 @@
 #include <rbc_ifem/membrane/elastic_law.h>
 #include <rbc_ifem/membrane/parameters.h>
 
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/table.h>
 #include <deal.II/base/tensor.h>
@@ -53,14 +54,18 @@ namespace rbc_ifem
    */
   struct MembraneStiffness
   {
-    SparseMatrix<double>                           local; ///< the sparse part
+    /// The sparse part: this rank's share of it when the membrane shares
+    /// its work (Membrane::share_work()).
+    SparseMatrix<double>                           local;
     std::vector<std::pair<double, Vector<double>>> rank_one;
+    /// The ranks that hold a share of the sparse part.
+    MPI_Comm communicator = MPI_COMM_SELF;
 
-    /// @p dst += K @p src.
+    /// @p dst += K @p src; collective over the communicator.
     void
     vmult_add(Vector<double> &dst, const Vector<double> &src) const;
 
-    /// @p diagonal += the diagonal of K.
+    /// @p diagonal += the diagonal of K; collective over the communicator.
     void
     add_diagonal(Vector<double> &diagonal) const;
   };
@@ -101,6 +106,18 @@ namespace rbc_ifem
 
     const DoFHandler<2, 3> &
     get_dof_handler() const;
+
+    /**
+     * Share the cell loops of energy_and_forces() and stiffness() out over
+     * the ranks of @p comm: each rank takes a contiguous block of the cells
+     * (and of the nodes), and the sums, the forces and the products with
+     * the stiffness are added up over the ranks, so that every rank gets
+     * the whole result. Every rank of @p comm must then call these
+     * functions together, with the same positions. Without it (or with
+     * MPI_COMM_SELF) a membrane works alone.
+     */
+    void
+    share_work(const MPI_Comm comm);
 
     /// The reference positions X: every DoF's coordinate on the reference
     /// surface.
@@ -288,6 +305,14 @@ namespace rbc_ifem
     /// @{
     struct SumGradients;
 
+    /**
+     * The cells whose first derivatives this rank's share of the stiffness
+     * needs: its own cells (for ∂A/∂x and ∂V/∂x) and those around its
+     * nodes (for their bending energy).
+     */
+    std::vector<bool>
+    cells_for_sum_gradients() const;
+
     /// The first derivatives of the sums at @p x that the stiffness chains
     /// through, by forward mode at each quadrature point.
     SumGradients
@@ -343,11 +368,25 @@ namespace rbc_ifem
     Sums
     sum_cell_terms(const Vector<double> &x) const;
 
+    /// The same over the cells [@p cells.first, @p cells.second) only.
+    Sums
+    sum_cell_terms(const Vector<double>                       &x,
+                   const std::pair<unsigned int, unsigned int> cells) const;
+
+    /// sum_cell_terms() shared out over the ranks of share_work().
+    Sums
+    sum_shared_cell_terms(const Vector<double> &x) const;
+
+    /// This rank's block [first, second) of @p n items shared out.
+    std::pair<unsigned int, unsigned int>
+    share(const unsigned int n) const;
+
     std::vector<double>
     local_positions(const unsigned int cell, const Vector<double> &x) const;
 
     const MembraneParameters parameters;
     const ElasticLaw         elastic_law; ///< chosen from parameters.law
+    MPI_Comm                 communicator = MPI_COMM_SELF; ///< share_work()
     FE_Q<2, 3>               scalar_fe;
     FESystem<2, 3>           fe;
     DoFHandler<2, 3>         dof_handler;

@@ -1,0 +1,100 @@
+// mpirun: 2 3
+
+// A membrane whose work is shared out over the ranks (Membrane::share_work())
+// gives every rank the energy, the forces and the products with the tangent
+// stiffness of the same membrane working alone, to round-off: for both
+// elastic laws and both element degrees, all energy terms on, at a randomly
+// perturbed Evans-Fung cell. Runs on 2 and 3 ranks (an uneven share).
+
+#include <rbc_ifem/membrane/membrane.h>
+
+#include "check.h"
+#include "membrane_fixtures.h"
+
+using namespace rbc_ifem;
+using test::create_cell;
+using test::random_vector;
+
+namespace
+{
+  /// |a - b| / |b|
+  double
+  relative_difference(const Vector<double> &a, const Vector<double> &b)
+  {
+    Vector<double> difference(a);
+    difference -= b;
+    return difference.l2_norm() / b.l2_norm();
+  }
+
+  void
+  check_shared(Checker           &check,
+               const std::string &law,
+               const unsigned int degree)
+  {
+    Triangulation<2, 3> surface;
+    create_cell(surface, 2);
+    MembraneParameters parameters;
+    parameters.law             = law;
+    parameters.degree          = degree;
+    parameters.bending_modulus = 0.2;
+    parameters.area_penalty    = 500.;
+    parameters.volume_penalty  = 500.;
+    const Membrane alone(surface, parameters);
+    Membrane       shared(surface, parameters);
+    shared.share_work(MPI_COMM_WORLD);
+
+    // The same random numbers on every rank.
+    std::mt19937   random(7);
+    Vector<double> x = alone.reference_positions();
+    x += random_vector(x.size(), 0.05, random);
+    const Vector<double> v = random_vector(x.size(), 1., random);
+
+    Vector<double>    f_alone(x.size()), f_shared(x.size());
+    const double      e_alone  = alone.energy_and_forces(x, f_alone).total();
+    const double      e_shared = shared.energy_and_forces(x, f_shared).total();
+    MembraneStiffness K_alone, K_shared;
+    alone.stiffness(x, K_alone);
+    shared.stiffness(x, K_shared);
+    Vector<double> Kv_alone(x.size()), Kv_shared(x.size());
+    K_alone.vmult_add(Kv_alone, v);
+    K_shared.vmult_add(Kv_shared, v);
+
+    const std::string name = law + " Q" + std::to_string(degree) + ": ";
+    check.at_most(name + "energy, shared against alone (relative)",
+                  std::abs(e_shared - e_alone) / e_alone,
+                  1e-13);
+    check.at_most(name + "forces, shared against alone (relative)",
+                  relative_difference(f_shared, f_alone),
+                  1e-12);
+    check.at_most(name + "K v, shared against alone (relative)",
+                  relative_difference(Kv_shared, Kv_alone),
+                  1e-12);
+    // Each rank holds only its share of K's sparse part: the share is a
+    // real split, not a copy.
+    unsigned int rows_held = 0;
+    for (unsigned int i = 0; i < K_shared.local.m(); ++i)
+      {
+        double row_sum = 0.;
+        for (auto entry = K_shared.local.begin(i);
+             entry != K_shared.local.end(i);
+             ++entry)
+          row_sum += std::abs(entry->value());
+        rows_held += row_sum > 0.;
+      }
+    check.holds(name + "each rank holds a part of the sparse stiffness",
+                rows_held < K_shared.local.m());
+  }
+} // namespace
+
+int
+main(int argc, char *argv[])
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
+    std::cout.setstate(std::ios::failbit); // every rank checks, rank 0 reports
+  Checker check;
+  for (const std::string law : {"Skalak", "neo-Hookean"})
+    for (const unsigned int degree : {1u, 2u})
+      check_shared(check, law, degree);
+  return check.exit_code();
+}

@@ -42,18 +42,29 @@ namespace rbc_ifem
   }
 
   void
-  CellOwners::add_up(std::vector<Vector<double>> &values, double &scalar) const
+  CellOwners::add_up(std::vector<Vector<double>> &values,
+                     const ArrayView<double>     &scalars) const
   {
     if (!shared())
       return;
-    std::vector<double> packed{scalar};
+    packed.assign(scalars.begin(), scalars.end());
     for (const Vector<double> &cell : values)
       packed.insert(packed.end(), cell.begin(), cell.end());
     Utilities::MPI::sum(packed, communicator, packed);
     auto value = packed.begin();
-    scalar     = *value++;
+    for (double &scalar : scalars)
+      scalar = *value++;
     for (Vector<double> &cell : values)
       for (double &entry : cell)
         entry = *value++;
+  }
+
+  void
+  CellOwners::take_smallest(const ArrayView<double> &values) const
+  {
+    if (shared())
+      Utilities::MPI::min(ArrayView<const double>(values.data(), values.size()),
+                          communicator,
+                          values);
   }
 } // namespace rbc_ifem

@@ -91,7 +91,15 @@ namespace rbc_ifem
         external_force += report.external_force;
         total_energy += report.energy;
       }
-
+    // Each rank added its own cells' forces: one reduction for them all.
+    std::vector<double> totals{total_energy,
+                               external_force[0],
+                               external_force[1],
+                               external_force[2]};
+    cell_owners.add_up(forces, make_array_view(totals));
+    total_energy = totals[0];
+    for (unsigned int d = 0; d < 3; ++d)
+      external_force[d] = totals[d + 1];
     return per_point(forces);
   }
 
@@ -145,6 +153,7 @@ namespace rbc_ifem
       Kv[c].reinit(v[c].size());
     for (const auto &K : stiffnesses)
       K->add_product(v, Kv);
+    cell_owners.add_up(Kv, {});
     return per_point(Kv);
   }
 
@@ -156,6 +165,7 @@ namespace rbc_ifem
       diagonal[c].reinit(x[c].size());
     for (const auto &K : stiffnesses)
       K->add_diagonal(diagonal);
+    cell_owners.add_up(diagonal, {});
     return per_point(diagonal);
   }
 

@@ -1,3 +1,4 @@
+#include <rbc_ifem/coupling/cell_boxes.h>
 #include <rbc_ifem/coupling/cell_population.h>
 #include <rbc_ifem/coupling/contact_forces.h>
 #include <rbc_ifem/coupling/point_bins.h>
@@ -16,11 +17,15 @@ namespace rbc_ifem
     /**
      * K of point forces: 3 × 3 blocks on single points (a wall) and on
      * pairs of points i, j whose energy depends on x_i - x_j (K_ii = K_jj =
-     * H, K_ij = K_ji = -H).
+     * H, K_ij = K_ji = -H), in the rows of the cells this rank owns.
      */
     class PointBlockStiffness : public CellForceStiffness
     {
     public:
+      explicit PointBlockStiffness(const CellOwners &owners)
+        : owners(owners)
+      {}
+
       /// A point: its cell and its node's DoFs.
       using PointDoFs =
         std::pair<unsigned int, std::array<types::global_dof_index, 3>>;
@@ -35,8 +40,9 @@ namespace rbc_ifem
         };
         const auto add = [&](const PointDoFs &point, const Tensor<1, 3> &f) {
           const auto &[c, dofs] = point;
-          for (unsigned int d = 0; d < 3; ++d)
-            results[c][dofs[d]] += f[d];
+          if (owners.owns(c))
+            for (unsigned int d = 0; d < 3; ++d)
+              results[c][dofs[d]] += f[d];
         };
         for (const auto &[point, H] : single)
           add(point, H * at(point));
@@ -53,8 +59,9 @@ namespace rbc_ifem
       {
         const auto add = [&](const PointDoFs &point, const Tensor<2, 3> &H) {
           const auto &[c, dofs] = point;
-          for (unsigned int d = 0; d < 3; ++d)
-            diagonal[c][dofs[d]] += H[d][d];
+          if (owners.owns(c))
+            for (unsigned int d = 0; d < 3; ++d)
+              diagonal[c][dofs[d]] += H[d][d];
         };
         for (const auto &[point, H] : single)
           add(point, H);
@@ -67,6 +74,10 @@ namespace rbc_ifem
 
       std::vector<std::pair<PointDoFs, Tensor<2, 3>>>             single;
       std::vector<std::tuple<PointDoFs, PointDoFs, Tensor<2, 3>>> pairs;
+
+    private:
+      /// A copy: the owners when K was taken.
+      const CellOwners owners;
     };
   } // namespace
 
@@ -151,10 +162,12 @@ namespace rbc_ifem
   MembraneInteraction::MembraneInteraction(
     const std::vector<std::unique_ptr<Membrane>> &membranes,
     std::unique_ptr<GapPotential>                 potential,
-    const std::optional<double>                  &period)
+    const std::optional<double>                  &period,
+    const CellOwners                             &owners)
     : membranes(membranes)
     , potential(std::move(potential))
     , period(period)
+    , owners(owners)
     , reference_areas(reference_point_areas(membranes))
     , at_cutoff(unshifted_pair_density(this->potential->cutoff()))
   {}
@@ -191,39 +204,44 @@ namespace rbc_ifem
   MembraneInteraction::for_each_close_pair(const std::vector<Vector<double>> &x,
                                            const PairFunction &f) const
   {
-    // Every point with its cell and node, in one list for the bins: in a
+    // Every point of this rank's cells and of the cells near them (its
+    // ghosts) with its cell and node, in one list for the bins: in a
     // periodic segment each where it lies in the segment, and those within
     // the cutoff of its end once more one period before its start. A pair
     // across the ends is then found once, as a point and an image.
-    const double          cutoff = potential->cutoff();
-    std::vector<Point<3>> points;
+    const double            cutoff = potential->cutoff();
+    const std::vector<bool> near =
+      CellBoxes(membranes, x, period).near_owned(owners, cutoff);
+    std::vector<Point<3>>                              points;
     std::vector<std::pair<unsigned int, unsigned int>> owner;
     std::vector<bool>                                  image;
     for (const bool images : {false, true})
       for (unsigned int c = 0; c < membranes.size(); ++c)
-        {
-          const auto &nodes = membranes[c]->nodes();
-          for (unsigned int n = 0; n < nodes.size(); ++n)
-            {
-              Point<3> p =
-                wrap_into_segment(node_position(x[c], nodes[n]), period);
-              if (images)
-                {
-                  if (!period || p[0] < *period - cutoff)
-                    continue;
-                  p[0] -= *period;
-                }
-              points.push_back(p);
-              owner.emplace_back(c, n);
-              image.push_back(images);
-            }
-        }
+        if (near[c])
+          {
+            const auto &nodes = membranes[c]->nodes();
+            for (unsigned int n = 0; n < nodes.size(); ++n)
+              {
+                Point<3> p =
+                  wrap_into_segment(node_position(x[c], nodes[n]), period);
+                if (images)
+                  {
+                    if (!period || p[0] < *period - cutoff)
+                      continue;
+                    p[0] -= *period;
+                  }
+                points.push_back(p);
+                owner.emplace_back(c, n);
+                image.push_back(images);
+              }
+          }
 
     PointBins(points, cutoff)
       .for_each_close_pair([&](const unsigned int i, const unsigned int j) {
         const auto [ci, ni] = owner[i];
         const auto [cj, nj] = owner[j];
-        if (ci == cj || (image[i] && image[j]))
+        if (ci == cj || (image[i] && image[j]) ||
+            !(owners.owns(ci) || owners.owns(cj)))
           return;
         const Tensor<1, 3> separation = points[i] - points[j];
         f(ClosePair{ci,
@@ -240,17 +258,23 @@ namespace rbc_ifem
   MembraneInteraction::add_forces(const std::vector<Vector<double>> &x,
                                   std::vector<Vector<double>> &forces) const
   {
+    // A pair of two ranks' cells is found by both: each takes the force on
+    // its own point and half the energy.
     CellForceReport report;
     for_each_close_pair(x, [&](const ClosePair &pair) {
       const auto [psi, dpsi] = pair_density(pair.r);
-      report.energy += pair.weight * psi;
+      const bool owns_i      = owners.owns(pair.ci);
+      const bool owns_j      = owners.owns(pair.cj);
+      report.energy += (owns_i && owns_j ? 1. : 0.5) * pair.weight * psi;
       const Tensor<1, 3> force = -pair.weight * dpsi / pair.r * pair.separation;
-      add_node_force(forces[pair.ci],
-                     membranes[pair.ci]->nodes()[pair.ni],
-                     force);
-      add_node_force(forces[pair.cj],
-                     membranes[pair.cj]->nodes()[pair.nj],
-                     -force);
+      if (owns_i)
+        add_node_force(forces[pair.ci],
+                       membranes[pair.ci]->nodes()[pair.ni],
+                       force);
+      if (owns_j)
+        add_node_force(forces[pair.cj],
+                       membranes[pair.cj]->nodes()[pair.nj],
+                       -force);
     });
     return report;
   }
@@ -260,7 +284,7 @@ namespace rbc_ifem
   {
     // E = w ψ(r): ∂²E/∂x_i² = w [ψ'' n nᵀ + ψ'/r (I - n nᵀ)], n = (x_i -
     // x_j)/r, and the opposite on the pair's cross terms.
-    auto result = std::make_unique<PointBlockStiffness>();
+    auto result = std::make_unique<PointBlockStiffness>(owners);
     for_each_close_pair(x, [&](const ClosePair &pair) {
       const Tensor<1, 3> n      = pair.separation / pair.r;
       const double       dpsi   = pair_density(pair.r).second;
@@ -284,10 +308,12 @@ namespace rbc_ifem
   WallRepulsion::WallRepulsion(
     const std::vector<std::unique_ptr<Membrane>> &membranes,
     const double                                  radius,
-    const RepulsivePotential                     &potential)
+    const RepulsivePotential                     &potential,
+    const CellOwners                             &owners)
     : membranes(membranes)
     , radius(radius)
     , potential(potential)
+    , owners(owners)
     , reference_areas(reference_point_areas(membranes))
   {}
 
@@ -297,12 +323,13 @@ namespace rbc_ifem
   {
     CellForceReport report;
     for (unsigned int c = 0; c < membranes.size(); ++c)
-      {
-        const CellForceReport cell =
-          add_cell_forces(c, radius, x[c], forces[c]);
-        report.energy += cell.energy;
-        report.external_force += cell.external_force;
-      }
+      if (owners.owns(c))
+        {
+          const CellForceReport cell =
+            add_cell_forces(c, radius, x[c], forces[c]);
+          report.energy += cell.energy;
+          report.external_force += cell.external_force;
+        }
     return report;
   }
 
@@ -344,28 +371,29 @@ namespace rbc_ifem
   {
     // E = a φ(d), d = R - ρ: ∇d = -e (e = (0, y, z)/ρ), ∂²d = -(P - e eᵀ)/ρ
     // with P the projection on y, z; φ' = -p, φ'' = -p'.
-    auto result = std::make_unique<PointBlockStiffness>();
+    auto result = std::make_unique<PointBlockStiffness>(owners);
     for (unsigned int c = 0; c < membranes.size(); ++c)
-      {
-        const auto &nodes = membranes[c]->nodes();
-        for (unsigned int n = 0; n < nodes.size(); ++n)
-          {
-            const Point<3> p   = node_position(x[c], nodes[n]);
-            const double   rho = std::hypot(p[1], p[2]);
-            const double   gap = radius - rho;
-            if (gap >= potential.cutoff() || gap <= 0.)
-              continue;
-            const auto [pressure, dp] = potential.pressure(gap);
-            const Tensor<1, 3> e({0., p[1] / rho, p[2] / rho});
-            Tensor<2, 3>       plane;
-            plane[1][1] = plane[2][2] = 1.;
-            const Tensor<2, 3> radial = outer_product(e, e);
-            result->single.emplace_back(
-              PointBlockStiffness::PointDoFs(c, nodes[n]),
-              reference_areas[c][n] *
-                (-dp * radial + pressure / rho * (plane - radial)));
-          }
-      }
+      if (owners.owns(c))
+        {
+          const auto &nodes = membranes[c]->nodes();
+          for (unsigned int n = 0; n < nodes.size(); ++n)
+            {
+              const Point<3> p   = node_position(x[c], nodes[n]);
+              const double   rho = std::hypot(p[1], p[2]);
+              const double   gap = radius - rho;
+              if (gap >= potential.cutoff() || gap <= 0.)
+                continue;
+              const auto [pressure, dp] = potential.pressure(gap);
+              const Tensor<1, 3> e({0., p[1] / rho, p[2] / rho});
+              Tensor<2, 3>       plane;
+              plane[1][1] = plane[2][2] = 1.;
+              const Tensor<2, 3> radial = outer_product(e, e);
+              result->single.emplace_back(
+                PointBlockStiffness::PointDoFs(c, nodes[n]),
+                reference_areas[c][n] *
+                  (-dp * radial + pressure / rho * (plane - radial)));
+            }
+        }
     return result;
   }
 
@@ -416,7 +444,8 @@ namespace rbc_ifem
         cells.membranes(),
         std::make_unique<RepulsivePotential>(parameters.repulsion_pressure,
                                              parameters.repulsion_range),
-        period));
+        period,
+        cells.owners()));
     if (parameters.aggregation && cells.size() > 1)
       cells.add_force(std::make_unique<MembraneInteraction>(
         cells.membranes(),
@@ -424,11 +453,13 @@ namespace rbc_ifem
                                          parameters.aggregation_width,
                                          parameters.aggregation_distance,
                                          parameters.aggregation_cutoff),
-        period));
+        period,
+        cells.owners()));
     if (parameters.wall_pressure > 0. && wall_radius)
       cells.add_force(std::make_unique<WallRepulsion>(
         cells.membranes(),
         *wall_radius,
-        RepulsivePotential(parameters.wall_pressure, parameters.wall_range)));
+        RepulsivePotential(parameters.wall_pressure, parameters.wall_range),
+        cells.owners()));
   }
 } // namespace rbc_ifem

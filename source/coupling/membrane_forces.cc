@@ -3,40 +3,6 @@
 namespace rbc_ifem
 {
 
-  namespace
-  {
-    /**
-     * Add to @p results (one Vector per cell) what @p add_cell(c, result)
-     * adds for each cell c that this rank owns, and every other rank's for
-     * its cells: one reduction for all cells, none on one rank.
-     */
-    template <typename CellFunction>
-    double
-    add_by_owners(const CellOwners            &owners,
-                  std::vector<Vector<double>> &results,
-                  const CellFunction          &add_cell)
-    {
-      double scalar = 0.;
-      if (!owners.shared())
-        {
-          for (unsigned int c = 0; c < results.size(); ++c)
-            scalar += add_cell(c, results[c]);
-          return scalar;
-        }
-      std::vector<Vector<double>> owned(results.size());
-      for (unsigned int c = 0; c < results.size(); ++c)
-        {
-          owned[c].reinit(results[c].size());
-          if (owners.owns(c))
-            scalar += add_cell(c, owned[c]);
-        }
-      owners.add_up(owned, scalar);
-      for (unsigned int c = 0; c < results.size(); ++c)
-        results[c] += owned[c];
-      return scalar;
-    }
-  } // namespace
-
   MembraneElasticity::MembraneElasticity(
     const std::vector<std::unique_ptr<Membrane>> &membranes,
     const CellOwners                             &owners)
@@ -50,14 +16,14 @@ namespace rbc_ifem
   {
     CellForceReport report;
     Vector<double>  cell_forces;
-    report.energy = add_by_owners(
-      owners, forces, [&](const unsigned int c, Vector<double> &result) {
-        cell_forces.reinit(x[c].size(), /*omit_zeroing_entries=*/true);
-        const double energy =
-          membranes[c]->energy_and_forces(x[c], cell_forces).total();
-        result += cell_forces;
-        return energy;
-      });
+    for (unsigned int c = 0; c < membranes.size(); ++c)
+      if (owners.owns(c))
+        {
+          cell_forces.reinit(x[c].size(), /*omit_zeroing_entries=*/true);
+          report.energy +=
+            membranes[c]->energy_and_forces(x[c], cell_forces).total();
+          forces[c] += cell_forces;
+        }
     return report;
   }
 
@@ -77,23 +43,17 @@ namespace rbc_ifem
       add_product(const std::vector<Vector<double>> &v,
                   std::vector<Vector<double>>       &results) const override
       {
-        add_by_owners(owners,
-                      results,
-                      [&](const unsigned int c, Vector<double> &result) {
-                        cells[c].vmult_add(result, v[c]);
-                        return 0.;
-                      });
+        for (unsigned int c = 0; c < cells.size(); ++c)
+          if (owners.owns(c))
+            cells[c].vmult_add(results[c], v[c]);
       }
 
       void
       add_diagonal(std::vector<Vector<double>> &diagonal) const override
       {
-        add_by_owners(owners,
-                      diagonal,
-                      [&](const unsigned int c, Vector<double> &result) {
-                        cells[c].add_diagonal(result);
-                        return 0.;
-                      });
+        for (unsigned int c = 0; c < cells.size(); ++c)
+          if (owners.owns(c))
+            cells[c].add_diagonal(diagonal[c]);
       }
 
       std::vector<MembraneStiffness> cells;
@@ -101,12 +61,13 @@ namespace rbc_ifem
       const CellOwners owners;
     };
 
-    /// K = k I of springs of stiffness k.
+    /// K = k I of springs of stiffness k on the owned cells.
     class SpringStiffness : public CellForceStiffness
     {
     public:
-      explicit SpringStiffness(const double k)
+      SpringStiffness(const double k, const CellOwners &owners)
         : k(k)
+        , owners(owners)
       {}
 
       void
@@ -114,18 +75,21 @@ namespace rbc_ifem
                   std::vector<Vector<double>>       &results) const override
       {
         for (unsigned int c = 0; c < v.size(); ++c)
-          results[c].add(k, v[c]);
+          if (owners.owns(c))
+            results[c].add(k, v[c]);
       }
 
       void
       add_diagonal(std::vector<Vector<double>> &diagonal) const override
       {
-        for (Vector<double> &d : diagonal)
-          d.add(k);
+        for (unsigned int c = 0; c < diagonal.size(); ++c)
+          if (owners.owns(c))
+            diagonal[c].add(k);
       }
 
     private:
-      const double k;
+      const double     k;
+      const CellOwners owners;
     };
   } // namespace
 
@@ -141,9 +105,11 @@ namespace rbc_ifem
   }
 
   Tether::Tether(const std::vector<std::unique_ptr<Membrane>> &membranes,
-                 const double                                  stiffness)
+                 const double                                  stiffness,
+                 const CellOwners                             &owners)
     : membranes(membranes)
     , spring_constant(stiffness)
+    , owners(owners)
   {}
 
   CellForceReport
@@ -152,23 +118,25 @@ namespace rbc_ifem
   {
     CellForceReport report;
     for (unsigned int c = 0; c < membranes.size(); ++c)
-      {
-        const Vector<double> &X = membranes[c]->reference_positions();
-        for (unsigned int i = 0; i < x[c].size(); ++i)
-          {
-            const double displacement = x[c][i] - X[i];
-            const double spring       = -spring_constant * displacement;
-            forces[c][i] += spring;
-            report.external_force[membranes[c]->component(i)] += spring;
-            report.energy += spring_constant / 2. * displacement * displacement;
-          }
-      }
+      if (owners.owns(c))
+        {
+          const Vector<double> &X = membranes[c]->reference_positions();
+          for (unsigned int i = 0; i < x[c].size(); ++i)
+            {
+              const double displacement = x[c][i] - X[i];
+              const double spring       = -spring_constant * displacement;
+              forces[c][i] += spring;
+              report.external_force[membranes[c]->component(i)] += spring;
+              report.energy +=
+                spring_constant / 2. * displacement * displacement;
+            }
+        }
     return report;
   }
 
   std::unique_ptr<CellForceStiffness>
   Tether::stiffness(const std::vector<Vector<double>> &) const
   {
-    return std::make_unique<SpringStiffness>(spring_constant);
+    return std::make_unique<SpringStiffness>(spring_constant, owners);
   }
 } // namespace rbc_ifem

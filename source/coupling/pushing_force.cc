@@ -7,9 +7,11 @@ namespace rbc_ifem
 {
   PushingForce::PushingForce(
     const std::vector<std::unique_ptr<Membrane>> &membranes,
-    const std::vector<Tensor<1, 3>>              &cell_forces)
+    const std::vector<Tensor<1, 3>>              &cell_forces,
+    const CellOwners                             &owners)
     : membranes(membranes)
     , cell_forces(cell_forces)
+    , owners(owners)
     , weights(reference_point_areas(membranes))
   {
     AssertDimension(cell_forces.size(), membranes.size());
@@ -27,16 +29,17 @@ namespace rbc_ifem
   {
     CellForceReport report;
     for (unsigned int c = 0; c < membranes.size(); ++c)
-      {
-        const auto &nodes = membranes[c]->nodes();
-        for (unsigned int n = 0; n < nodes.size(); ++n)
-          {
-            const Tensor<1, 3> force = weights[c][n] * cell_forces[c];
-            report.energy -= force * node_position(x[c], nodes[n]);
-            add_node_force(forces[c], nodes[n], force);
-          }
-        report.external_force += cell_forces[c];
-      }
+      if (owners.owns(c))
+        {
+          const auto &nodes = membranes[c]->nodes();
+          for (unsigned int n = 0; n < nodes.size(); ++n)
+            {
+              const Tensor<1, 3> force = weights[c][n] * cell_forces[c];
+              report.energy -= force * node_position(x[c], nodes[n]);
+              add_node_force(forces[c], nodes[n], force);
+            }
+          report.external_force += cell_forces[c];
+        }
     return report;
   }
 

@@ -80,8 +80,9 @@ namespace rbc_ifem
   {
     const ImmersedParameters &immersed = parameters.immersed;
     if (immersed.tether_stiffness > 0.)
-      cells.add_force(
-        std::make_unique<Tether>(cells.membranes(), immersed.tether_stiffness));
+      cells.add_force(std::make_unique<Tether>(cells.membranes(),
+                                               immersed.tether_stiffness,
+                                               cells.owners()));
     const std::vector<Tensor<1, 3>> pushes = immersed.pushing_force_vectors();
     if (!pushes.empty())
       {
@@ -91,8 +92,9 @@ namespace rbc_ifem
                            "one force 'Fx, Fy, Fz' per cell: " +
                              std::to_string(cells.size()) +
                              " separated by ';', or none.");
-        cells.add_force(
-          std::make_unique<PushingForce>(cells.membranes(), pushes));
+        cells.add_force(std::make_unique<PushingForce>(cells.membranes(),
+                                                       pushes,
+                                                       cells.owners()));
       }
     add_interaction_forces(cells,
                            parameters.interactions,
@@ -120,11 +122,13 @@ namespace rbc_ifem
     if (parameters.immersed.squeeze_into_lumen)
       {
         TimerOutput::Scope  scope(timer, "squeeze into lumen");
+        const CellOwners    this_rank_alone;
         const WallRepulsion wall(
           cells.membranes(),
           *domain.wall_radius,
           RepulsivePotential(parameters.interactions.wall_pressure,
-                             parameters.interactions.wall_range));
+                             parameters.interactions.wall_range),
+          this_rank_alone);
         std::vector<Vector<double>> x      = cells.positions();
         const unsigned int          stages = wall.squeeze_into_lumen(x);
         cells.set_positions(x);
@@ -449,7 +453,8 @@ namespace rbc_ifem
     const std::vector<CellGaps>  gaps   = measure_gaps(cells.membranes(),
                                                     cells.positions(),
                                                     domain.wall_radius,
-                                                    domain.period);
+                                                    domain.period,
+                                                    cells.owners());
     // A gap to nothing (one cell, no wall) is left empty.
     const auto gap_text = [](const double gap) {
       return std::isfinite(gap) ? csv_row(gap) : std::string();
@@ -490,7 +495,8 @@ namespace rbc_ifem
       gaps = measure_gaps(cells.membranes(),
                           cells.positions(),
                           domain.wall_radius,
-                          domain.period);
+                          domain.period,
+                          cells.owners());
     }
     for (unsigned int c = 0; c < gaps.size(); ++c)
       {
@@ -518,7 +524,8 @@ namespace rbc_ifem
     for (const CellGaps &gaps : measure_gaps(cells.membranes(),
                                              cells.positions(),
                                              domain.wall_radius,
-                                             domain.period))
+                                             domain.period,
+                                             cells.owners()))
       {
         cell_gap = std::min(cell_gap, gaps.to_cells);
         wall_gap = std::min(wall_gap, gaps.to_wall);

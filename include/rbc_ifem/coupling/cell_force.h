@@ -36,13 +36,13 @@ namespace rbc_ifem
     virtual ~CellForceStiffness() = default;
 
     /// Add K @p displacements to @p results (one Vector per cell, in the
-    /// layout of the positions).
+    /// layout of the positions), the rows of the cells this rank owns.
     virtual void
     add_product(const std::vector<Vector<double>> &displacements,
                 std::vector<Vector<double>>       &results) const = 0;
 
     /// Add the diagonal of K to @p diagonal (one Vector per cell, in the
-    /// layout of the positions).
+    /// layout of the positions), the rows of the cells this rank owns.
     virtual void
     add_diagonal(std::vector<Vector<double>> &diagonal) const = 0;
   };
@@ -57,6 +57,12 @@ namespace rbc_ifem
    * cell's Membrane (the x, y, z of each node: Membrane::nodes()). Forces
    * that involve several cells (a repulsion between them) see all of them;
    * since F is a gradient, the forces of a pair are equal and opposite.
+   *
+   * On several ranks each rank adds the forces, energy and products K v of
+   * the cells it owns (CellOwners) and leaves the others' alone: the
+   * population adds every force's results up over the ranks in one
+   * reduction (CellPopulation::compute_forces()). A term shared by two
+   * cells of different owners (a pair's energy) counts half on each.
    */
   class CellForce
   {

@@ -1,6 +1,7 @@
 #ifndef rbc_ifem_coupling_cell_owners_h
 #define rbc_ifem_coupling_cell_owners_h
 
+#include <deal.II/base/array_view.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/lac/vector.h>
 
@@ -16,7 +17,9 @@ namespace rbc_ifem
    * MembraneElasticity) and writes its files. Cell c belongs to rank c
    * modulo the ranks, which shares N cells out evenly. Every rank still
    * holds every cell's positions and gets every cell's results, summed
-   * over the owners in one reduction for all cells (add_up()); issue 51
+   * over the owners in one reduction for all cells (add_up()): its
+   * elasticity, its contact with cells near it and the forces that hold or
+   * push it (CellForce). Issue 51
    * goes on to owners chosen by where the cells are, with ghost copies
    * near them instead of every cell everywhere.
    */
@@ -40,18 +43,27 @@ namespace rbc_ifem
     shared() const;
 
     /**
-     * Replace @p values (one Vector per cell) and @p scalar on every rank
+     * Replace @p values (one Vector per cell) and @p scalars on every rank
      * by their sums over the ranks, in one reduction: each rank gives its
      * own cells' values and zeros for the others, so that every rank gets
      * every cell's. Collective; nothing to do on one rank.
      */
     void
-    add_up(std::vector<Vector<double>> &values, double &scalar) const;
+    add_up(std::vector<Vector<double>> &values,
+           const ArrayView<double>     &scalars) const;
+
+    /// Replace @p values on every rank by their smallest over the ranks, in
+    /// one reduction. Collective; nothing to do on one rank.
+    void
+    take_smallest(const ArrayView<double> &values) const;
 
   private:
     MPI_Comm     communicator;
     unsigned int rank;
     unsigned int n_ranks;
+    /// What add_up() packs and sends, kept so that a product inside every
+    /// linear iteration allocates nothing.
+    mutable std::vector<double> packed;
   };
 } // namespace rbc_ifem
 

@@ -2,6 +2,7 @@
 #define rbc_ifem_coupling_contact_forces_h
 
 #include <rbc_ifem/coupling/cell_force.h>
+#include <rbc_ifem/coupling/cell_owners.h>
 #include <rbc_ifem/coupling/parameters.h>
 #include <rbc_ifem/membrane/membrane.h>
 
@@ -105,7 +106,9 @@ namespace rbc_ifem
    * -∂E/∂x, central and pairwise equal and opposite, so the total force
    * and torque vanish. Pairs are found in PointBins, never all pairs. In a
    * periodic segment (a @p period along x) a pair's separation is the
-   * shortest across the ends, so cells interact through them.
+   * shortest across the ends, so cells interact through them. Each rank
+   * bins the points of its own cells and of the cells whose boxes come
+   * within the cutoff of them (CellBoxes::near_owned()), nothing else.
    */
   /// Two points of different cells near each other (MembraneInteraction).
   struct ClosePair
@@ -119,9 +122,13 @@ namespace rbc_ifem
   class MembraneInteraction : public CellForce
   {
   public:
+    /// The @p potential between the @p membranes, across the ends of a
+    /// segment with a @p period; each rank adds the forces on the cells of
+    /// its @p owners (held by reference).
     MembraneInteraction(const std::vector<std::unique_ptr<Membrane>> &membranes,
                         std::unique_ptr<GapPotential>                 potential,
-                        const std::optional<double> &period = std::nullopt);
+                        const std::optional<double>                  &period,
+                        const CellOwners                             &owners);
 
     CellForceReport
     add_forces(const std::vector<Vector<double>> &positions,
@@ -151,6 +158,7 @@ namespace rbc_ifem
     const std::vector<std::unique_ptr<Membrane>> &membranes;
     const std::unique_ptr<GapPotential>           potential;
     const std::optional<double>                   period;
+    const CellOwners                             &owners;
     std::vector<std::vector<double>>              reference_areas;
     std::pair<double, double>                     at_cutoff;
   };
@@ -165,9 +173,12 @@ namespace rbc_ifem
   class WallRepulsion : public CellForce
   {
   public:
+    /// Each rank adds the forces on the cells of its @p owners (held by
+    /// reference).
     WallRepulsion(const std::vector<std::unique_ptr<Membrane>> &membranes,
                   const double                                  radius,
-                  const RepulsivePotential                     &potential);
+                  const RepulsivePotential                     &potential,
+                  const CellOwners                             &owners);
 
     CellForceReport
     add_forces(const std::vector<Vector<double>> &positions,
@@ -198,6 +209,7 @@ namespace rbc_ifem
     const std::vector<std::unique_ptr<Membrane>> &membranes;
     const double                                  radius;
     const RepulsivePotential                      potential;
+    const CellOwners                             &owners;
     std::vector<std::vector<double>>              reference_areas;
   };
 

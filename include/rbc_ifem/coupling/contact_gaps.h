@@ -1,6 +1,7 @@
 #ifndef rbc_ifem_coupling_contact_gaps_h
 #define rbc_ifem_coupling_contact_gaps_h
 
+#include <rbc_ifem/coupling/cell_owners.h>
 #include <rbc_ifem/membrane/membrane.h>
 
 #include <deal.II/lac/vector.h>
@@ -34,13 +35,18 @@ namespace rbc_ifem
    * CellPopulation holds them), with a capillary wall of radius
    * @p wall_radius about the x axis if there is one, and in a segment
    * periodic with @p period along x, across its ends. The nearest points of
-   * other cells come from one r-tree over all points, not all pairs.
+   * other cells come from one r-tree, not all pairs. Each rank of @p owners
+   * measures from its own cells' points, searching only the cells that may
+   * hold their nearest points (CellBoxes::nearest_candidates()); the ranks
+   * then take the smallest of each gap in one reduction, so that every rank
+   * gets every cell's. Collective on @p owners.
    */
   std::vector<CellGaps>
   measure_gaps(const std::vector<std::unique_ptr<Membrane>> &membranes,
                const std::vector<Vector<double>>            &x,
                const std::optional<double>                   wall_radius,
-               const std::optional<double> period = std::nullopt);
+               const std::optional<double> period = std::nullopt,
+               const CellOwners           &owners = CellOwners());
 } // namespace rbc_ifem
 
 #endif

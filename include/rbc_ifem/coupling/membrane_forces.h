@@ -14,9 +14,8 @@ namespace rbc_ifem
    * The membranes' own mechanics as a CellForce: every cell's Membrane
    * energy (in-plane law, bending, area and volume) and its exact forces.
    * Internal: it holds no cell in place. Each cell's forces and tangent
-   * stiffness are computed by its owner rank alone, and every rank gets
-   * all cells' in one reduction (CellOwners::add_up()): the collectives do
-   * not grow with the number of cells.
+   * stiffness are computed by its owner rank alone; the CellPopulation
+   * adds them up over the ranks.
    */
   class MembraneElasticity : public CellForce
   {
@@ -47,8 +46,11 @@ namespace rbc_ifem
   class Tether : public CellForce
   {
   public:
+    /// Springs of @p stiffness on the @p membranes; each rank adds the
+    /// forces on the cells it owns (@p owners, held by reference).
     Tether(const std::vector<std::unique_ptr<Membrane>> &membranes,
-           const double                                  stiffness);
+           const double                                  stiffness,
+           const CellOwners                             &owners);
 
     CellForceReport
     add_forces(const std::vector<Vector<double>> &positions,
@@ -59,7 +61,8 @@ namespace rbc_ifem
 
   private:
     const std::vector<std::unique_ptr<Membrane>> &membranes;
-    const double spring_constant; ///< k [pN/µm]
+    const double      spring_constant; ///< k [pN/µm]
+    const CellOwners &owners;
   };
 } // namespace rbc_ifem
 

@@ -2,6 +2,7 @@
 #define rbc_ifem_coupling_pushing_force_h
 
 #include <rbc_ifem/coupling/cell_force.h>
+#include <rbc_ifem/coupling/cell_owners.h>
 #include <rbc_ifem/membrane/membrane.h>
 
 #include <deal.II/base/tensor.h>
@@ -22,8 +23,11 @@ namespace rbc_ifem
   class PushingForce : public CellForce
   {
   public:
+    /// Each rank adds the forces on the cells of its @p owners (held by
+    /// reference).
     PushingForce(const std::vector<std::unique_ptr<Membrane>> &membranes,
-                 const std::vector<Tensor<1, 3>>              &cell_forces);
+                 const std::vector<Tensor<1, 3>>              &cell_forces,
+                 const CellOwners                             &owners);
 
     CellForceReport
     add_forces(const std::vector<Vector<double>> &positions,
@@ -35,6 +39,7 @@ namespace rbc_ifem
   private:
     const std::vector<std::unique_ptr<Membrane>> &membranes;
     const std::vector<Tensor<1, 3>>               cell_forces;
+    const CellOwners                             &owners;
     /// a_i / A_c of every point.
     std::vector<std::vector<double>> weights;
   };

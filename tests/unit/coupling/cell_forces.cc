@@ -99,7 +99,8 @@ main(int argc, char *argv[])
   {
     const double   k = 50.;
     CellPopulation cells(two_cells(), coarse_cells(), MembraneParameters());
-    cells.add_force(std::make_unique<Tether>(cells.membranes(), k));
+    cells.add_force(
+      std::make_unique<Tether>(cells.membranes(), k, cells.owners()));
     cells.set_positions(perturbed(cells.positions(), 0.05, random));
     const std::vector<Tensor<1, 3>> forces = cells.compute_forces();
 

@@ -2,18 +2,25 @@
 
 // The cells' mechanics computed by their owners (CellPopulation::share_work(),
 // CellOwners): five Evans-Fung cells at randomly perturbed positions, all
-// energy terms on, give every rank the energy, the forces, the products with
-// the tangent stiffness and its diagonal of the same population computed
-// alone, to round-off. Runs on 2 and 3 ranks (five cells share out unevenly)
-// and checks that every cell has one owner.
+// energy terms on, pressed together in a periodic segment so that every cell
+// touches its neighbours (the last the first across the end) and the wall,
+// give every rank the energy, the forces, the products with the tangent
+// stiffness and its diagonal, and the gaps, of the same population computed
+// alone, to round-off (the gaps exactly). Neighbours belong to different
+// ranks, so each pair's contact is split between two owners, each seeing the
+// other's cell as a ghost. Runs on 2 and 3 ranks (five cells share out
+// unevenly) and checks that every cell has one owner.
 
 #include <rbc_ifem/coupling/cell_owners.h>
 #include <rbc_ifem/coupling/cell_population.h>
+#include <rbc_ifem/coupling/contact_forces.h>
+#include <rbc_ifem/coupling/contact_gaps.h>
 
 #include "check.h"
 
 #include <deal.II/base/mpi.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -22,13 +29,18 @@ using namespace rbc_ifem;
 namespace
 {
   constexpr unsigned int n_cells = 5;
+  /// Between the cells' centres, a little more than their thickness [µm].
+  constexpr double spacing = 3.;
+  /// The periodic segment, so that cell 4 meets cell 0 across the end.
+  constexpr double period      = n_cells * spacing;
+  constexpr double wall_radius = 4.3; ///< a cell's radius is 3.9 µm
 
   std::vector<CellPlacement>
   train()
   {
     std::vector<CellPlacement> cells;
     for (unsigned int c = 0; c < n_cells; ++c)
-      cells.push_back(CellPlacement{Point<3>(5. + 10. * c, 0., 0.),
+      cells.push_back(CellPlacement{Point<3>(spacing * (c + 0.5), 0., 0.),
                                     Tensor<1, 3>({1., 0., 0.})});
     return cells;
   }
@@ -41,6 +53,18 @@ namespace
     membrane.area_penalty    = 500.;
     membrane.volume_penalty  = 500.;
     return membrane;
+  }
+
+  /// Repulsion, aggregation (its 2 µm cutoff reaches past the neighbours)
+  /// and the wall.
+  InteractionParameters
+  every_interaction()
+  {
+    InteractionParameters interactions;
+    interactions.repulsion_range = 0.6;
+    interactions.aggregation     = true;
+    interactions.wall_range      = 0.6;
+    return interactions;
   }
 
   /// @p n random vectors of entries in (-@p amplitude, @p amplitude): the
@@ -87,6 +111,8 @@ main(int argc, char *argv[])
   CellPopulation alone(train(), cell_parameters, every_term());
   CellPopulation owned(train(), cell_parameters, every_term());
   owned.share_work(MPI_COMM_WORLD);
+  for (CellPopulation *cells : {&alone, &owned})
+    add_interaction_forces(*cells, every_interaction(), wall_radius, period);
 
   // Both at the same perturbed positions: move every point by a random
   // velocity for a unit time.
@@ -103,6 +129,22 @@ main(int argc, char *argv[])
   check.at_most("forces, by owners against alone (relative)",
                 relative_difference(f_owned, f_alone),
                 1e-12);
+
+  const auto gaps = [](const CellPopulation &cells) {
+    std::vector<double> result;
+    for (const CellGaps &g : measure_gaps(cells.membranes(),
+                                          cells.positions(),
+                                          wall_radius,
+                                          period,
+                                          cells.owners()))
+      result.insert(result.end(), {g.to_cells, g.to_wall});
+    return result;
+  };
+  const std::vector<double> gaps_alone = gaps(alone);
+  check.at_most("largest gap of a cell to another or the wall [µm]",
+                *std::max_element(gaps_alone.begin(), gaps_alone.end()),
+                0.6);
+  check.holds("gaps, by owners, equal those alone", gaps(owned) == gaps_alone);
 
   alone.linearize();
   owned.linearize();

@@ -45,7 +45,7 @@ namespace rbc_ifem
     dof_handler.distribute_dofs(fe);
     tabulate_shape_functions();
     number_nodes();
-    make_stiffness_sparsity();
+    find_cells_around_nodes();
     interpolate_reference_surface();
     measure_reference_surface();
   }

@@ -144,22 +144,33 @@ namespace rbc_ifem
   }
 
   void
-  Membrane::make_stiffness_sparsity()
+  Membrane::find_cells_around_nodes()
   {
-    // The stiffness couples the DoFs of all cells around a node: the
-    // bending energy of a node depends on them through its sums.
     cells_around_node.resize(n_nodes);
     for (unsigned int c = 0; c < cell_nodes.size(); ++c)
       for (unsigned int a = 0; a < scalar_fe.n_dofs_per_cell(); ++a)
         cells_around_node[cell_nodes[c][a]].emplace_back(c, a);
-    DynamicSparsityPattern coupled(dof_handler.n_dofs());
-    for (unsigned int i = 0; i < n_nodes; ++i)
+  }
+
+  const SparsityPattern &
+  Membrane::stiffness_pattern() const
+  {
+    // The stiffness couples the DoFs of all cells around a node: the
+    // bending energy of a node depends on them through its sums. Made on
+    // the first stiffness(), so that ranks that hold a cell without owning
+    // it never store the pattern (as large as the rest of the Membrane).
+    if (stiffness_sparsity.empty())
       {
-        const std::vector<types::global_dof_index> patch = patch_dofs(i);
-        for (const types::global_dof_index row : patch)
-          coupled.add_entries(row, patch.begin(), patch.end(), true);
+        DynamicSparsityPattern coupled(dof_handler.n_dofs());
+        for (unsigned int i = 0; i < n_nodes; ++i)
+          {
+            const std::vector<types::global_dof_index> patch = patch_dofs(i);
+            for (const types::global_dof_index row : patch)
+              coupled.add_entries(row, patch.begin(), patch.end(), true);
+          }
+        stiffness_sparsity.copy_from(coupled);
       }
-    stiffness_sparsity.copy_from(coupled);
+    return stiffness_sparsity;
   }
 
   std::vector<types::global_dof_index>
@@ -179,7 +190,7 @@ namespace rbc_ifem
     const Sums        sums = sum_shared_cell_terms(x);
     MembraneEnergy    energy;
     const Multipliers d = energy_derivatives(sums, energy);
-    K.local.reinit(stiffness_sparsity);
+    K.local.reinit(stiffness_pattern());
     K.rank_one.clear();
     K.communicator = communicator;
 

@@ -227,10 +227,9 @@ namespace rbc_ifem
     /// cell's DoFs and nodes.
     void
     number_nodes();
-    /// cells_around_node, and the stiffness's sparsity: the DoFs of the
-    /// cells around each node coupled.
+    /// cells_around_node.
     void
-    make_stiffness_sparsity();
+    find_cells_around_nodes();
     /// X: the support points of the field, on the curved reference surface.
     void
     interpolate_reference_surface();
@@ -296,6 +295,11 @@ namespace rbc_ifem
                     const unsigned int           q,
                     const std::array<Number, 9> &z,
                     const PointWeights          &weights) const;
+
+    /// The stiffness's sparsity, the DoFs of the cells around each node
+    /// coupled, made on the first call.
+    const SparsityPattern &
+    stiffness_pattern() const;
 
     /// The DoFs of the cells around node @p i, sorted.
     std::vector<types::global_dof_index>
@@ -403,8 +407,9 @@ namespace rbc_ifem
     /// Per node, the (cell, local node) pairs of the cells around it.
     std::vector<std::vector<std::pair<unsigned int, unsigned int>>>
       cells_around_node;
-    /// The DoFs coupled by the stiffness: those of the cells around a node.
-    SparsityPattern stiffness_sparsity;
+    /// The DoFs coupled by the stiffness: those of the cells around a node
+    /// (stiffness_pattern()).
+    mutable SparsityPattern stiffness_sparsity;
 
     /// Reference geometry per cell and quadrature point: G⁻¹ and sqrt(det G).
     std::vector<std::vector<Tensor<2, 2>>> reference_metric_inverse;

@@ -690,7 +690,8 @@ namespace rbc_ifem
       record_start();
     const InterruptionGuard interruption;
     Timer                   clock;
-    const unsigned int      first_step = record.step;
+    const unsigned int      first_step       = record.step;
+    const MpiTraffic        traffic_at_start = MpiTraffic::so_far();
     while (record.step < parameters.time.n_steps)
       {
         const StepReport stepped = advance();
@@ -706,6 +707,8 @@ namespace rbc_ifem
                        record.step - first_step,
                        clock.wall_time());
     report_load_balance();
+    run_report.communication(MpiTraffic::so_far() - traffic_at_start,
+                             record.step - first_step);
     timer.print_summary();
   }
 

@@ -2,7 +2,10 @@
 #include <rbc_ifem/base/output.h>
 #include <rbc_ifem/ifem/run_report.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 namespace rbc_ifem
 {
@@ -145,6 +148,28 @@ namespace rbc_ifem
                   " red cells it holds (CellOwners)")
           << ", " << spread(points_here) << " membrane points in its "
           << spread(fluid_cells_here) << " fluid cells" << std::endl;
+  }
+
+  void
+  RunReport::communication(const MpiTraffic  &during,
+                           const unsigned int n_run) const
+  {
+    const auto spread = [&](const unsigned long long count) {
+      const auto range = Utilities::MPI::min_max_avg(
+        static_cast<double>(count) / std::max(1u, n_run), communicator);
+      std::ostringstream text;
+      text << std::fixed << std::setprecision(0) << range.min << "-"
+           << range.max;
+      return text.str();
+    };
+    const std::string collectives = spread(during.collectives);
+    const std::string messages    = spread(during.messages);
+    const std::string bytes       = spread(during.bytes);
+    pcout << "  per rank and step, least to most over "
+          << Utilities::MPI::n_mpi_processes(communicator) << ": "
+          << collectives << " collective MPI calls, " << messages
+          << " messages sent, " << bytes << " bytes sent (MpiTraffic)"
+          << std::endl;
   }
 
   void

@@ -1,6 +1,7 @@
 #ifndef rbc_ifem_ifem_run_report_h
 #define rbc_ifem_ifem_run_report_h
 
+#include <rbc_ifem/base/mpi_traffic.h>
 #include <rbc_ifem/coupling/cell_population.h>
 #include <rbc_ifem/coupling/time_step_limit.h>
 #include <rbc_ifem/ifem/flow_domain.h>
@@ -62,6 +63,16 @@ namespace rbc_ifem
     load_balance(const CellPopulation &cells,
                  const unsigned int    points_here,
                  const unsigned int    fluid_cells_here) const;
+
+    /**
+     * What each rank asked of MPI in a run's @p n_run steps, @p during them
+     * (MpiTraffic::so_far() after, less before), per step, least to most
+     * over the ranks (collective): collective calls, point-to-point
+     * messages and their bytes. Whether the communication grows with the
+     * cells (doc/scaling.md).
+     */
+    void
+    communication(const MpiTraffic &during, const unsigned int n_run) const;
 
   private:
     /// The start-up warnings.

@@ -1,0 +1,209 @@
+#include <rbc_ifem/base/mpi_traffic.h>
+
+#include <mpi.h>
+
+#include <atomic>
+
+// The wrappers of MpiTraffic. Defined in the program, they take the place
+// of the MPI library's functions for every caller (the dynamic linker finds
+// the program's first); each counts and calls the PMPI_ function, which
+// does what the MPI_ function would have.
+
+namespace
+{
+  std::atomic<unsigned long long> n_collectives{0};
+  std::atomic<unsigned long long> n_messages{0};
+  std::atomic<unsigned long long> n_bytes{0};
+
+  void
+  count_message(const int count, MPI_Datatype type)
+  {
+    int size = 0;
+    PMPI_Type_size(type, &size);
+    ++n_messages;
+    n_bytes += static_cast<unsigned long long>(count) * size;
+  }
+} // namespace
+
+/// One wrapper per collective: count the call, then make it.
+#define COLLECTIVE(name, parameters, arguments) \
+  extern "C" int name parameters                \
+  {                                             \
+    ++n_collectives;                            \
+    return P##name arguments;                   \
+  }
+
+COLLECTIVE(MPI_Barrier, (MPI_Comm c), (c))
+COLLECTIVE(MPI_Ibarrier, (MPI_Comm c, MPI_Request *r), (c, r))
+COLLECTIVE(MPI_Bcast,
+           (void *b, int n, MPI_Datatype t, int root, MPI_Comm c),
+           (b, n, t, root, c))
+COLLECTIVE(
+  MPI_Allreduce,
+  (const void *s, void *r, int n, MPI_Datatype t, MPI_Op o, MPI_Comm c),
+  (s, r, n, t, o, c))
+COLLECTIVE(MPI_Iallreduce,
+           (const void  *s,
+            void        *r,
+            int          n,
+            MPI_Datatype t,
+            MPI_Op       o,
+            MPI_Comm     c,
+            MPI_Request *q),
+           (s, r, n, t, o, c, q))
+COLLECTIVE(MPI_Reduce,
+           (const void  *s,
+            void        *r,
+            int          n,
+            MPI_Datatype t,
+            MPI_Op       o,
+            int          root,
+            MPI_Comm     c),
+           (s, r, n, t, o, root, c))
+COLLECTIVE(
+  MPI_Scan,
+  (const void *s, void *r, int n, MPI_Datatype t, MPI_Op o, MPI_Comm c),
+  (s, r, n, t, o, c))
+COLLECTIVE(
+  MPI_Exscan,
+  (const void *s, void *r, int n, MPI_Datatype t, MPI_Op o, MPI_Comm c),
+  (s, r, n, t, o, c))
+COLLECTIVE(MPI_Allgather,
+           (const void  *s,
+            int          ns,
+            MPI_Datatype ts,
+            void        *r,
+            int          nr,
+            MPI_Datatype tr,
+            MPI_Comm     c),
+           (s, ns, ts, r, nr, tr, c))
+COLLECTIVE(MPI_Allgatherv,
+           (const void  *s,
+            int          ns,
+            MPI_Datatype ts,
+            void        *r,
+            const int   *nr,
+            const int   *d,
+            MPI_Datatype tr,
+            MPI_Comm     c),
+           (s, ns, ts, r, nr, d, tr, c))
+COLLECTIVE(MPI_Gather,
+           (const void  *s,
+            int          ns,
+            MPI_Datatype ts,
+            void        *r,
+            int          nr,
+            MPI_Datatype tr,
+            int          root,
+            MPI_Comm     c),
+           (s, ns, ts, r, nr, tr, root, c))
+COLLECTIVE(MPI_Gatherv,
+           (const void  *s,
+            int          ns,
+            MPI_Datatype ts,
+            void        *r,
+            const int   *nr,
+            const int   *d,
+            MPI_Datatype tr,
+            int          root,
+            MPI_Comm     c),
+           (s, ns, ts, r, nr, d, tr, root, c))
+COLLECTIVE(MPI_Scatter,
+           (const void  *s,
+            int          ns,
+            MPI_Datatype ts,
+            void        *r,
+            int          nr,
+            MPI_Datatype tr,
+            int          root,
+            MPI_Comm     c),
+           (s, ns, ts, r, nr, tr, root, c))
+COLLECTIVE(MPI_Scatterv,
+           (const void  *s,
+            const int   *ns,
+            const int   *d,
+            MPI_Datatype ts,
+            void        *r,
+            int          nr,
+            MPI_Datatype tr,
+            int          root,
+            MPI_Comm     c),
+           (s, ns, d, ts, r, nr, tr, root, c))
+COLLECTIVE(MPI_Alltoall,
+           (const void  *s,
+            int          ns,
+            MPI_Datatype ts,
+            void        *r,
+            int          nr,
+            MPI_Datatype tr,
+            MPI_Comm     c),
+           (s, ns, ts, r, nr, tr, c))
+COLLECTIVE(MPI_Alltoallv,
+           (const void  *s,
+            const int   *ns,
+            const int   *ds,
+            MPI_Datatype ts,
+            void        *r,
+            const int   *nr,
+            const int   *dr,
+            MPI_Datatype tr,
+            MPI_Comm     c),
+           (s, ns, ds, ts, r, nr, dr, tr, c))
+COLLECTIVE(
+  MPI_Reduce_scatter,
+  (const void *s, void *r, const int *n, MPI_Datatype t, MPI_Op o, MPI_Comm c),
+  (s, r, n, t, o, c))
+COLLECTIVE(MPI_Comm_dup, (MPI_Comm c, MPI_Comm *d), (c, d))
+COLLECTIVE(MPI_Comm_split,
+           (MPI_Comm c, int k, int r, MPI_Comm *d),
+           (c, k, r, d))
+
+/// One wrapper per way to send: count the message and its bytes.
+#define SEND(name, parameters, arguments) \
+  extern "C" int name parameters          \
+  {                                       \
+    count_message(n, t);                  \
+    return P##name arguments;             \
+  }
+
+SEND(MPI_Send,
+     (const void *b, int n, MPI_Datatype t, int to, int tag, MPI_Comm c),
+     (b, n, t, to, tag, c))
+SEND(MPI_Ssend,
+     (const void *b, int n, MPI_Datatype t, int to, int tag, MPI_Comm c),
+     (b, n, t, to, tag, c))
+SEND(MPI_Isend,
+     (const void  *b,
+      int          n,
+      MPI_Datatype t,
+      int          to,
+      int          tag,
+      MPI_Comm     c,
+      MPI_Request *q),
+     (b, n, t, to, tag, c, q))
+SEND(MPI_Issend,
+     (const void  *b,
+      int          n,
+      MPI_Datatype t,
+      int          to,
+      int          tag,
+      MPI_Comm     c,
+      MPI_Request *q),
+     (b, n, t, to, tag, c, q))
+
+namespace rbc_ifem
+{
+  MpiTraffic
+  MpiTraffic::so_far()
+  {
+    return {n_collectives.load(), n_messages.load(), n_bytes.load()};
+  }
+
+  MpiTraffic
+  MpiTraffic::operator-(const MpiTraffic &earlier) const
+  {
+    return {collectives - earlier.collectives,
+            messages - earlier.messages,
+            bytes - earlier.bytes};
+  }
+} // namespace rbc_ifem

@@ -1,5 +1,6 @@
 #include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/output.h>
+#include <rbc_ifem/coupling/cell_boxes.h>
 #include <rbc_ifem/ifem/run_report.h>
 
 #include <algorithm>
@@ -133,6 +134,18 @@ namespace rbc_ifem
     unsigned int owned = 0;
     for (unsigned int c = 0; c < cells.size(); ++c)
       owned += cells.owners().owns(c);
+    // The ghosts: the other cells within contact reach of the owned ones,
+    // whose points the rank's contact search sees (MembraneInteraction).
+    const InteractionParameters &contact = parameters.interactions;
+    double                       reach =
+      contact.repulsion_pressure > 0. ? contact.repulsion_range : 0.;
+    if (contact.aggregation)
+      reach = std::max(reach, contact.aggregation_cutoff);
+    const std::vector<bool> near =
+      CellBoxes(cells.membranes(), cells.positions(), domain.period)
+        .near_owned(cells.owners(), reach);
+    const unsigned int ghosts =
+      std::count(near.begin(), near.end(), true) - owned;
     const auto spread = [this](const unsigned int n) {
       const auto range = Utilities::MPI::min_max_avg(n, communicator);
       return std::to_string(static_cast<unsigned int>(range.min)) + "-" +
@@ -145,7 +158,8 @@ namespace rbc_ifem
                   " red cells it holds (fewer cells than ranks)" :
                 "owns " + spread(owned) + " of the " +
                   std::to_string(cells.size()) +
-                  " red cells it holds (CellOwners)")
+                  " red cells it holds (CellOwners) and sees " +
+                  spread(ghosts) + " more in contact reach (ghosts)")
           << ", " << spread(points_here) << " membrane points in its "
           << spread(fluid_cells_here) << " fluid cells" << std::endl;
   }

@@ -55,7 +55,8 @@ namespace rbc_ifem
 
     /**
      * What each rank holds and computes, least to most over the ranks
-     * (collective): the red cells it owns (CellOwners) of those it holds,
+     * (collective): the red cells it owns (CellOwners) of those it holds
+     * and the others in contact reach of them (its ghosts, CellBoxes),
      * @p points_here membrane points in its @p fluid_cells_here fluid
      * cells. The spread is the load balance (doc/scaling.md).
      */

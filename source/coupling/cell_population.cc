@@ -4,6 +4,7 @@
 #include <rbc_ifem/membrane/deformed_surface_mapping.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace rbc_ifem
@@ -202,40 +203,99 @@ namespace rbc_ifem
         }
   }
 
+  namespace
+  {
+    /// How many numbers a CellShape holds.
+    constexpr unsigned int n_shape_numbers = 11;
+
+    /// A CellShape's numbers in one Vector, and back: what the owners add
+    /// up.
+    Vector<double>
+    packed(const CellShape &s)
+    {
+      const std::array<double, n_shape_numbers> numbers{
+        {s.centroid[0],
+         s.centroid[1],
+         s.centroid[2],
+         s.area,
+         s.volume,
+         s.axial_length,
+         s.max_radius,
+         s.deformation_index,
+         s.taylor_deformation,
+         s.inclination,
+         s.largest_local_area_change}};
+      return Vector<double>(numbers.begin(), numbers.end());
+    }
+
+    CellShape
+    unpacked(const Vector<double> &v)
+    {
+      CellShape s;
+      s.centroid                  = Point<3>(v[0], v[1], v[2]);
+      s.area                      = v[3];
+      s.volume                    = v[4];
+      s.axial_length              = v[5];
+      s.max_radius                = v[6];
+      s.deformation_index         = v[7];
+      s.taylor_deformation        = v[8];
+      s.inclination               = v[9];
+      s.largest_local_area_change = v[10];
+      return s;
+    }
+  } // namespace
+
   std::vector<CellShape>
   CellPopulation::shapes() const
   {
-    std::vector<CellShape> result(size());
-    const auto             surfaces = current_surfaces();
+    // Each owner measures its cells, one surface at a time; one sum gives
+    // every rank all of them (the others' entries are zeros).
+    std::vector<Vector<double>> measured(size(),
+                                         Vector<double>(n_shape_numbers));
+    Triangulation<2, 3>         surface;
     for (unsigned int c = 0; c < size(); ++c)
-      {
-        CellShape            &shape = result[c];
-        const SurfaceMeasures measures =
-          measure_surface(*surfaces[c], flat_mapping);
-        shape.centroid = measures.centroid;
-        shape.area     = cell_membranes[c]->area(x[c]);
-        shape.volume   = cell_membranes[c]->volume(x[c]);
-        double x_min = std::numeric_limits<double>::max(), x_max = -x_min;
-        for (const auto &dofs : cell_membranes[c]->nodes())
-          {
-            const Point<3> p(x[c][dofs[0]], x[c][dofs[1]], x[c][dofs[2]]);
-            x_min            = std::min(x_min, p[0]);
-            x_max            = std::max(x_max, p[0]);
-            shape.max_radius = std::max(shape.max_radius,
-                                        std::hypot(p[1] - shape.centroid[1],
-                                                   p[2] - shape.centroid[2]));
-          }
-        shape.axial_length      = x_max - x_min;
-        shape.deformation_index = (shape.axial_length - 2. * shape.max_radius) /
-                                  (shape.axial_length + 2. * shape.max_radius);
-        const ShearPlaneEllipse ellipse =
-          shear_plane_ellipse(measures.second_moment);
-        shape.taylor_deformation = ellipse.taylor_deformation;
-        shape.inclination        = ellipse.inclination;
-        shape.largest_local_area_change =
-          cell_membranes[c]->local_area_changes(x[c]).linfty_norm();
-      }
+      if (cell_owners.owns(c))
+        {
+          surface.clear();
+          cell_membranes[c]->build_surface(x[c], surface);
+          measured[c] = packed(shape(c, surface));
+        }
+    cell_owners.add_up(measured, {});
+    std::vector<CellShape> result;
+    for (const Vector<double> &v : measured)
+      result.push_back(unpacked(v));
     return result;
+  }
+
+  CellShape
+  CellPopulation::shape(const unsigned int         c,
+                        const Triangulation<2, 3> &surface) const
+  {
+    CellShape             shape;
+    const SurfaceMeasures measures = measure_surface(surface, flat_mapping);
+    shape.centroid                 = measures.centroid;
+    shape.area                     = cell_membranes[c]->area(x[c]);
+    shape.volume                   = cell_membranes[c]->volume(x[c]);
+    double x_min = std::numeric_limits<double>::max(), x_max = -x_min;
+    for (const auto &dofs : cell_membranes[c]->nodes())
+      {
+        const Point<3> p(x[c][dofs[0]], x[c][dofs[1]], x[c][dofs[2]]);
+        x_min            = std::min(x_min, p[0]);
+        x_max            = std::max(x_max, p[0]);
+        shape.max_radius = std::max(shape.max_radius,
+                                    std::hypot(p[1] - shape.centroid[1],
+                                               p[2] - shape.centroid[2]));
+      }
+    shape.axial_length      = x_max - x_min;
+    shape.deformation_index = (shape.axial_length - 2. * shape.max_radius) /
+                              (shape.axial_length + 2. * shape.max_radius);
+    const ShearPlaneEllipse ellipse =
+      shear_plane_ellipse(measures.second_moment);
+    shape.taylor_deformation = ellipse.taylor_deformation;
+    shape.inclination        = ellipse.inclination;
+    shape.largest_local_area_change =
+      cell_membranes[c]->local_area_changes(x[c]).linfty_norm();
+    return shape;
   }
 
   std::vector<std::unique_ptr<Triangulation<2, 3>>>

@@ -144,7 +144,8 @@ namespace rbc_ifem
     void
     move(const std::vector<Tensor<1, 3>> &velocities, const double time_step);
 
-    /// Size and shape of every cell now.
+    /// Size and shape of every cell now, each measured by its owner and
+    /// shared with every rank in one reduction (collective).
     std::vector<CellShape>
     shapes() const;
 
@@ -198,6 +199,10 @@ namespace rbc_ifem
     set_positions(const std::vector<Vector<double>> &positions);
 
   private:
+    /// The shape of cell @p c, whose current @p surface is given.
+    CellShape
+    shape(const unsigned int c, const Triangulation<2, 3> &surface) const;
+
     /// One Vector per cell from values point by point, and back.
     std::vector<Vector<double>>
     per_cell(const std::vector<Tensor<1, 3>> &values) const;

@@ -5,6 +5,10 @@
 # yardstick): N uniform cells, one per 5 µm of a periodic capillary of
 # 5N µm (the prm/default.prm cell and meshes, semi-implicit at its step, no
 # DM), for each N of CELLS (default 4 16 64) on RANKS ranks (default 2).
+# N = 0 is the empty run: prm/default.prm's 20 µm capillary without cells,
+# the fixed cost every rank pays whatever the cells (the program, MPI and a
+# small mesh); its columns but the memory stay empty or count the fluid's
+# steps only.
 # Each N runs 3 steps:
 #  - seconds per step, and per cell: the wall time from the end of step 1
 #    to the end of step 3 over 2 (the progress lines), so that the set-up
@@ -24,11 +28,14 @@ read -r -a cells <<<"${cells[*]}"
 
 # run N: the run of N cells for 3 steps into run_N/, its log log_N.txt
 run() {
+  local cells=(--set "Immersed cells/Enabled=false")
+  if [ "$1" -gt 0 ]; then
+    cells=(--set "Geometry/Capillary length=$((5 * $1))" --set "Layout/Number of cells=$1")
+  fi
   mpirun --oversubscribe -np "$ranks" "$exe" "$(dirname "$here")/prm/default.prm" \
     --set "Output directory=run_$1" --set "Time/Number of steps=3" \
-    --set "Immersed cells/Diffusion interval=0" \
-    --set "Geometry/Periodic=true" --set "Geometry/Capillary length=$((5 * $1))" \
-    --set "Layout/Number of cells=$1" >"log_$1.txt"
+    --set "Immersed cells/Diffusion interval=0" --set "Geometry/Periodic=true" \
+    "${cells[@]}" >"log_$1.txt"
 }
 # wall_after N STEP: the wall time at the end of step STEP of the run of N
 # cells [s] (its progress line: "[wall 12.3 s" or "[wall 1 min 05 s")
@@ -49,9 +56,10 @@ results_table scaling ranks cells "fluid DoFs" "step [s]" "step per cell [s]" \
   "collectives per step" "bytes sent per step" "peak memory per rank [MB]"
 for n in "${cells[@]}"; do
   run "$n"
-  dofs=$(sed -n 's/.*fluid mesh: [0-9]* cells, \([0-9]*\) DoFs.*/\1/p' "log_${n}.txt")
+  dofs=$(sed -n -e 's/.*fluid mesh: [0-9]* cells, \([0-9]*\) DoFs.*/\1/p' \
+    -e 's/^  mesh: [0-9]* cells; \([0-9]*\) DoFs.*/\1/p' "log_${n}.txt")
   step=$(awk -v a="$(wall_after "$n" 1)" -v b="$(wall_after "$n" 3)" 'BEGIN {printf "%.2f", (b - a) / 2}')
-  per_cell=$(awk -v s="$step" -v n="$n" 'BEGIN {printf "%.3f", s / n}')
+  per_cell=$(awk -v s="$step" -v n="$n" 'BEGIN {if (n > 0) printf "%.3f", s / n}')
   memory=$(sed -n 's/.*peak memory: \([0-9.]*\) MB.*/\1/p' "log_${n}.txt")
   results_row "$ranks" "$n" "$dofs" "$step" "$per_cell" \
     "$(per_step "$n" "collective MPI calls")" "$(per_step "$n" "bytes sent")" "$memory"

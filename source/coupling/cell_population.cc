@@ -267,6 +267,20 @@ namespace rbc_ifem
     return result;
   }
 
+  std::vector<double>
+  CellPopulation::volumes() const
+  {
+    std::vector<Vector<double>> measured(size(), Vector<double>(1));
+    for (unsigned int c = 0; c < size(); ++c)
+      if (cell_owners.owns(c))
+        measured[c][0] = cell_membranes[c]->volume(x[c]);
+    cell_owners.add_up(measured, {});
+    std::vector<double> result;
+    for (const Vector<double> &v : measured)
+      result.push_back(v[0]);
+    return result;
+  }
+
   CellShape
   CellPopulation::shape(const unsigned int         c,
                         const Triangulation<2, 3> &surface) const

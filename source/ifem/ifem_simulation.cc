@@ -343,11 +343,10 @@ namespace rbc_ifem
   void
   IFEMSimulation::watch_volumes(const std::vector<Vector<double>> &last_good)
   {
-    const std::vector<Vector<double>> &x = cells.positions();
-    std::vector<double>                changes;
+    const std::vector<double> volumes = cells.volumes();
+    std::vector<double>       changes;
     for (unsigned int c = 0; c < cells.size(); ++c)
-      changes.push_back(
-        cells.membranes()[c]->volume(x[c]) / cells.reference_volume(c) - 1.);
+      changes.push_back(volumes[c] / cells.reference_volume(c) - 1.);
     const std::string why = volume_watch.add(changes);
     if (!why.empty())
       stop(why, last_good);

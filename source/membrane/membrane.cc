@@ -118,15 +118,17 @@ namespace rbc_ifem
       reference[dof] = point[component(dof)];
   }
 
-  void
-  Membrane::measure_reference_surface()
+  const Membrane::ReferenceMetric &
+  Membrane::reference_metric() const
   {
+    if (!metric.jacobian.empty())
+      return metric;
     const unsigned int n_q = quadrature.size();
     for (unsigned int c = 0; c < cell_dofs.size(); ++c)
       {
         const std::vector<double> X = local_positions(c, reference);
-        reference_metric_inverse.emplace_back(n_q);
-        reference_jacobian.emplace_back(n_q);
+        metric.inverse.emplace_back(n_q);
+        metric.jacobian.emplace_back(n_q);
         for (unsigned int q = 0; q < n_q; ++q)
           {
             Tensor<1, 3> tangent[2];
@@ -136,23 +138,31 @@ namespace rbc_ifem
                 for (unsigned int alpha = 0; alpha < 2; ++alpha)
                   tangent[alpha][d] += X[k] * shape_gradients(a, q)[alpha];
               }
-            Tensor<2, 2> metric;
+            Tensor<2, 2> G;
             for (unsigned int alpha = 0; alpha < 2; ++alpha)
               for (unsigned int beta = 0; beta < 2; ++beta)
-                metric[alpha][beta] = tangent[alpha] * tangent[beta];
-            reference_metric_inverse[c][q] = invert(metric);
-            reference_jacobian[c][q]       = std::sqrt(determinant(metric));
+                G[alpha][beta] = tangent[alpha] * tangent[beta];
+            metric.inverse[c][q]  = invert(G);
+            metric.jacobian[c][q] = std::sqrt(determinant(G));
           }
       }
+    return metric;
+  }
+
+  void
+  Membrane::measure_reference_surface()
+  {
+    const std::vector<std::vector<double>> &jacobian =
+      reference_metric().jacobian;
     for (unsigned int c = 0; c < cell_dofs.size(); ++c)
       {
         reference_cell_areas.push_back(0.);
-        for (unsigned int q = 0; q < n_q; ++q)
-          reference_cell_areas[c] +=
-            reference_jacobian[c][q] * quadrature.weight(q);
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
+          reference_cell_areas[c] += jacobian[c][q] * quadrature.weight(q);
       }
     area0   = area(reference);
     volume0 = volume(reference);
+    metric  = ReferenceMetric();
   }
 
   const DoFHandler<2, 3> &
@@ -201,6 +211,7 @@ namespace rbc_ifem
     terms.mass.resize(n_a);
     terms.normal.resize(n_a);
 
+    const ReferenceMetric &G = reference_metric();
     for (unsigned int q = 0; q < quadrature.size(); ++q)
       {
         Tensor<1, 3, Number> position, tangent[2];
@@ -213,14 +224,11 @@ namespace rbc_ifem
           }
         const double               w = quadrature.weight(q);
         const SurfacePoint<Number> point =
-          surface_point(tangent,
-                        reference_metric_inverse[cell][q],
-                        reference_jacobian[cell][q],
-                        w);
+          surface_point(tangent, G.inverse[cell][q], G.jacobian[cell][q], w);
         const Number               &dA        = point.dA;
         const Tensor<1, 3, Number> &normal_dA = point.normal_dA;
-        terms.in_plane += law.energy_density(point.I1, point.J) *
-                          reference_jacobian[cell][q] * w;
+        terms.in_plane +=
+          law.energy_density(point.I1, point.J) * G.jacobian[cell][q] * w;
         terms.area += dA;
         terms.volume += position * normal_dA / 3.;
         for (unsigned int a = 0; a < n_a; ++a)

@@ -158,16 +158,16 @@ namespace rbc_ifem
         tangent[1][d] = z[6 + d];
       }
     const double                                  w = quadrature.weight(q);
+    const ReferenceMetric                        &G = reference_metric();
     const MembraneInternals::SurfacePoint<Number> point =
       MembraneInternals::surface_point(tangent,
-                                       reference_metric_inverse[c][q],
-                                       reference_jacobian[c][q],
+                                       G.inverse[c][q],
+                                       G.jacobian[c][q],
                                        w);
-    Number phi =
-      law.energy_density(point.I1, point.J) * reference_jacobian[c][q] * w +
-      (weights.area + weights.mass) * point.dA +
-      weights.volume / 3. * (position * point.normal_dA) +
-      weights.normal * point.normal_dA;
+    Number phi = law.energy_density(point.I1, point.J) * G.jacobian[c][q] * w +
+                 (weights.area + weights.mass) * point.dA +
+                 weights.volume / 3. * (position * point.normal_dA) +
+                 weights.normal * point.normal_dA;
     for (unsigned int alpha = 0; alpha < 2; ++alpha)
       for (unsigned int beta = 0; beta < 2; ++beta)
         phi += point.g_inverse[alpha][beta] * point.dA *

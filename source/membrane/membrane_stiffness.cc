@@ -121,11 +121,11 @@ namespace rbc_ifem
         tangent[0][e] = z[3 + e];
         tangent[1][e] = z[6 + e];
       }
-    const SurfacePoint<Number> point =
-      surface_point(tangent,
-                    reference_metric_inverse[c][q],
-                    reference_jacobian[c][q],
-                    quadrature.weight(q));
+    const ReferenceMetric                 &G     = reference_metric();
+    const SurfacePoint<Number>             point = surface_point(tangent,
+                                                     G.inverse[c][q],
+                                                     G.jacobian[c][q],
+                                                     quadrature.weight(q));
     std::array<Number, n_point_integrands> t;
     t[0] = point.dA;
     t[1] = position * point.normal_dA / 3.;

@@ -144,6 +144,11 @@ namespace rbc_ifem
     void
     move(const std::vector<Tensor<1, 3>> &velocities, const double time_step);
 
+    /// The volume of every cell now [µm³], each measured by its owner and
+    /// shared with every rank in one reduction (collective).
+    std::vector<double>
+    volumes() const;
+
     /// Size and shape of every cell now, each measured by its owner and
     /// shared with every rank in one reduction (collective).
     std::vector<CellShape>

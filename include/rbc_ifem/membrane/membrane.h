@@ -217,6 +217,7 @@ namespace rbc_ifem
     struct CellTerms;
     struct Sums;
     struct Multipliers;
+    struct ReferenceMetric;
 
     /// @name The constructor's steps, in this order
     /// @{
@@ -233,8 +234,7 @@ namespace rbc_ifem
     /// X: the support points of the field, on the curved reference surface.
     void
     interpolate_reference_surface();
-    /// The reference metric and area element at every quadrature point,
-    /// every cell's reference area, A0 and V0.
+    /// Every cell's reference area, A0 and V0.
     void
     measure_reference_surface();
     /// @}
@@ -295,6 +295,11 @@ namespace rbc_ifem
                     const unsigned int           q,
                     const std::array<Number, 9> &z,
                     const PointWeights          &weights) const;
+
+    /// The reference metric at every quadrature point, made on the first
+    /// call.
+    const ReferenceMetric &
+    reference_metric() const;
 
     /// The stiffness's sparsity, the DoFs of the cells around each node
     /// coupled, made on the first call.
@@ -412,8 +417,15 @@ namespace rbc_ifem
     mutable SparsityPattern stiffness_sparsity;
 
     /// Reference geometry per cell and quadrature point: G⁻¹ and sqrt(det G).
-    std::vector<std::vector<Tensor<2, 2>>> reference_metric_inverse;
-    std::vector<std::vector<double>>       reference_jacobian;
+    struct ReferenceMetric
+    {
+      std::vector<std::vector<Tensor<2, 2>>> inverse;
+      std::vector<std::vector<double>>       jacobian;
+    };
+    /// Made when an energy or measure first needs it (reference_metric()),
+    /// and dropped after the constructor's measures: a rank that holds a
+    /// cell without owning it never measures it, and does not keep it.
+    mutable ReferenceMetric metric;
 
     /// N_a and ∂N_a/∂ξ at the quadrature points of the unit cell.
     Table<2, double>       shape_values;

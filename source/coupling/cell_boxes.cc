@@ -32,46 +32,55 @@ namespace rbc_ifem
     return {0., -*period, *period};
   }
 
+  template <typename AxisLength>
   double
-  CellBoxes::distance(const unsigned int a, const unsigned int b) const
+  CellBoxes::over_images(const unsigned int a,
+                         const unsigned int b,
+                         const AxisLength  &length) const
   {
     const auto &[a_low, a_high] = boxes[a].get_boundary_points();
     const auto &[b_low, b_high] = boxes[b].get_boundary_points();
-    double nearest              = std::numeric_limits<double>::infinity();
+    double smallest             = std::numeric_limits<double>::infinity();
     for (const double shift : shifts())
       {
         double squared = 0.;
         for (unsigned int d = 0; d < 3; ++d)
           {
-            const double s   = d == 0 ? shift : 0.;
-            const double gap = std::max(
-              {0., b_low[d] + s - a_high[d], a_low[d] - b_high[d] - s});
-            squared += gap * gap;
+            const double s = d == 0 ? shift : 0.;
+            const double l =
+              length(a_low[d], a_high[d], b_low[d] + s, b_high[d] + s);
+            squared += l * l;
           }
-        nearest = std::min(nearest, std::sqrt(squared));
+        smallest = std::min(smallest, std::sqrt(squared));
       }
-    return nearest;
+    return smallest;
+  }
+
+  double
+  CellBoxes::distance(const unsigned int a, const unsigned int b) const
+  {
+    return over_images(a,
+                       b,
+                       [](const double a_low,
+                          const double a_high,
+                          const double b_low,
+                          const double b_high) {
+                         return std::max({0., b_low - a_high, a_low - b_high});
+                       });
   }
 
   double
   CellBoxes::farthest(const unsigned int a, const unsigned int b) const
   {
-    const auto &[a_low, a_high] = boxes[a].get_boundary_points();
-    const auto &[b_low, b_high] = boxes[b].get_boundary_points();
-    double nearest              = std::numeric_limits<double>::infinity();
-    for (const double shift : shifts())
-      {
-        double squared = 0.;
-        for (unsigned int d = 0; d < 3; ++d)
-          {
-            const double s    = d == 0 ? shift : 0.;
-            const double span = std::max(std::abs(b_high[d] + s - a_low[d]),
-                                         std::abs(a_high[d] - b_low[d] - s));
-            squared += span * span;
-          }
-        nearest = std::min(nearest, std::sqrt(squared));
-      }
-    return nearest;
+    return over_images(a,
+                       b,
+                       [](const double a_low,
+                          const double a_high,
+                          const double b_low,
+                          const double b_high) {
+                         return std::max(std::abs(b_high - a_low),
+                                         std::abs(a_high - b_low));
+                       });
   }
 
   std::vector<bool>

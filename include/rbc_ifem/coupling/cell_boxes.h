@@ -61,6 +61,17 @@ namespace rbc_ifem
     double
     farthest(const unsigned int a, const unsigned int b) const;
 
+    /**
+     * The smallest, over @p b's images, of the length whose components are
+     * @p length(a_low, a_high, b_low, b_high) of the two boxes' extents
+     * along each axis [µm].
+     */
+    template <typename AxisLength>
+    double
+    over_images(const unsigned int a,
+                const unsigned int b,
+                const AxisLength  &length) const;
+
     /// The shifts along x to @p b's images: 0 and, with a period, ±period.
     std::vector<double>
     shifts() const;

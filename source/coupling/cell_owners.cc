@@ -1,5 +1,10 @@
 #include <rbc_ifem/coupling/cell_owners.h>
 
+#include <algorithm>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
 namespace rbc_ifem
 {
   namespace
@@ -23,10 +28,69 @@ namespace rbc_ifem
     , n_ranks(n_ranks_of(communicator))
   {}
 
+  std::vector<unsigned int>
+  CellOwners::place(const std::vector<double>       &where,
+                    const std::vector<unsigned int> &points)
+  {
+    AssertDimension(where.size(), points.size());
+    if (!shared())
+      return {};
+    const unsigned int        n_cells = where.size();
+    std::vector<unsigned int> order(n_cells);
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(),
+                     order.end(),
+                     [&where](const unsigned int a, const unsigned int b) {
+                       return where[a] < where[b];
+                     });
+    std::vector<unsigned int> placed(n_cells);
+    for (unsigned int r = 0; r < n_ranks; ++r)
+      for (unsigned int k = r * n_cells / n_ranks;
+           k < (r + 1) * n_cells / n_ranks;
+           ++k)
+        placed[order[k]] = r;
+
+    std::vector<unsigned int> lost;
+    for (unsigned int c = 0; c < n_cells && !owner_of.empty(); ++c)
+      if (placed[c] != owner_of[c])
+        {
+          ++handovers;
+          if (owner_of[c] == rank)
+            lost.push_back(c);
+        }
+    owner_of = std::move(placed);
+
+    // Every rank placed the cells from its own copy of their positions:
+    // if the copies ever differed, a cell could have two owners or none.
+    std::vector<unsigned int> owned(2, 0);
+    for (unsigned int c = 0; c < n_cells; ++c)
+      if (owns(c))
+        {
+          ++owned[0];
+          owned[1] += points[c];
+        }
+    Utilities::MPI::sum(owned, communicator, owned);
+    const unsigned int n_points =
+      std::accumulate(points.begin(), points.end(), 0u);
+    if (owned[0] != n_cells || owned[1] != n_points)
+      throw std::runtime_error(
+        "the ranks own " + std::to_string(owned[0]) + " red cells with " +
+        std::to_string(owned[1]) + " membrane points, not " +
+        std::to_string(n_cells) + " with " + std::to_string(n_points) +
+        ": their copies of the cells' positions differ.");
+    return lost;
+  }
+
+  unsigned int
+  CellOwners::n_handovers() const
+  {
+    return handovers;
+  }
+
   unsigned int
   CellOwners::owner(const unsigned int c) const
   {
-    return c % n_ranks;
+    return owner_of.empty() ? c % n_ranks : owner_of[c];
   }
 
   bool

@@ -1,5 +1,6 @@
 #include <rbc_ifem/coupling/cell_population.h>
 #include <rbc_ifem/coupling/membrane_forces.h>
+#include <rbc_ifem/geometry/capillary_mesh.h>
 #include <rbc_ifem/geometry/cell_surface.h>
 #include <rbc_ifem/membrane/deformed_surface_mapping.h>
 
@@ -30,15 +31,20 @@ namespace rbc_ifem
   }
 
   void
-  CellPopulation::share_work(const MPI_Comm comm)
+  CellPopulation::share_work(const MPI_Comm               comm,
+                             const std::optional<double> &period)
   {
+    this->period = period;
     // With at least as many cells as ranks each cell has one owner, which
     // computes it alone; with fewer, one owner per cell would leave ranks
     // idle (a single cell on 2 ranks: its stiffness took twice as long),
     // so every rank computes every cell, each membrane's cell loops split
     // over all ranks.
     if (size() >= Utilities::MPI::n_mpi_processes(comm))
-      cell_owners = CellOwners(comm);
+      {
+        cell_owners = CellOwners(comm);
+        place_owners();
+      }
     else
       for (const std::unique_ptr<Membrane> &membrane : cell_membranes)
         membrane->share_work(comm);
@@ -48,6 +54,36 @@ namespace rbc_ifem
   CellPopulation::owners() const
   {
     return cell_owners;
+  }
+
+  unsigned int
+  CellPopulation::writer(const unsigned int c,
+                         const MPI_Comm     communicator) const
+  {
+    return cell_owners.shared() ? cell_owners.owner(c) :
+                                  CellOwners(communicator).owner(c);
+  }
+
+  void
+  CellPopulation::place_owners()
+  {
+    if (!cell_owners.shared())
+      return;
+    std::vector<double>       where(size());
+    std::vector<unsigned int> points(size());
+    for (unsigned int c = 0; c < size(); ++c)
+      {
+        const auto &nodes = cell_membranes[c]->nodes();
+        for (const auto &dofs : nodes)
+          where[c] += x[c][dofs[0]] / nodes.size();
+        where[c]  = wrap_into_segment(Point<3>(where[c], 0., 0.), period)[0];
+        points[c] = nodes.size();
+      }
+    const std::vector<unsigned int> lost = cell_owners.place(where, points);
+    if (!lost.empty())
+      stiffnesses.clear();
+    for (const unsigned int c : lost)
+      cell_membranes[c]->forget_owner_data();
   }
 
   unsigned int
@@ -201,6 +237,7 @@ namespace rbc_ifem
             x[c][dofs[d]] += time_step * (*velocity)[d];
           ++velocity;
         }
+    place_owners();
   }
 
   namespace
@@ -393,14 +430,16 @@ namespace rbc_ifem
                             const FieldData   &field_data,
                             const MPI_Comm     communicator) const
   {
-    const CellOwners         writers(communicator);
+    const unsigned int       rank = Utilities::MPI::job_supports_mpi() ?
+                                      Utilities::MPI::this_mpi_process(communicator) :
+                                      0;
     std::vector<std::string> files;
     for (unsigned int c = 0; c < size(); ++c)
       {
         const std::string file = name + "_" + std::to_string(c) + "_" +
                                  Utilities::int_to_string(counter, 4);
         files.push_back(file + ".vtu");
-        if (!writers.owns(c))
+        if (writer(c, communicator) != rank)
           continue;
         const Vector<double> density =
           cell_membranes[c]->force_densities(x[c], forces[c]);
@@ -425,5 +464,6 @@ namespace rbc_ifem
   {
     AssertDimension(positions.size(), x.size());
     x = positions;
+    place_owners();
   }
 } // namespace rbc_ifem

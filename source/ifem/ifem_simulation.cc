@@ -141,7 +141,7 @@ namespace rbc_ifem
     // The squeeze above runs on every rank alone, so that its L-BFGS path,
     // and the squeezed shape within its tolerance, are the same for any
     // number of ranks.
-    cells.share_work(communicator);
+    cells.share_work(communicator, domain.period);
     std::vector<std::shared_ptr<const Triangulation<3>>> coarser_meshes;
     {
       TimerOutput::Scope          scope(timer, "fluid mesh");
@@ -550,7 +550,6 @@ namespace rbc_ifem
       write_pvd(directory, "flow", record.fluid_files, communicator);
       // Each cell's files by one rank; every rank keeps every cell's list,
       // which a checkpoint holds.
-      const CellOwners               writers(communicator);
       const std::vector<std::string> files = cells.write_vtu(
         directory, "cell", record.step, frame_data(), communicator);
       for (unsigned int c = 0; c < cells.size(); ++c)
@@ -560,7 +559,7 @@ namespace rbc_ifem
                     "cell_" + std::to_string(c),
                     record.cell_files[c],
                     communicator,
-                    writers.owner(c));
+                    cells.writer(c, communicator));
         }
     });
   }
@@ -689,8 +688,9 @@ namespace rbc_ifem
       record_start();
     const InterruptionGuard interruption;
     Timer                   clock;
-    const unsigned int      first_step       = record.step;
-    const MpiTraffic        traffic_at_start = MpiTraffic::so_far();
+    const unsigned int      first_step         = record.step;
+    const MpiTraffic        traffic_at_start   = MpiTraffic::so_far();
+    const unsigned int      handovers_at_start = cells.owners().n_handovers();
     while (record.step < parameters.time.n_steps)
       {
         const StepReport stepped = advance();
@@ -707,7 +707,8 @@ namespace rbc_ifem
                        clock.wall_time());
     report_load_balance();
     run_report.communication(MpiTraffic::so_far() - traffic_at_start,
-                             record.step - first_step);
+                             record.step - first_step,
+                             cells.owners().n_handovers() - handovers_at_start);
     timer.print_summary();
   }
 

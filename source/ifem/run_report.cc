@@ -166,7 +166,8 @@ namespace rbc_ifem
 
   void
   RunReport::communication(const MpiTraffic  &during,
-                           const unsigned int n_run) const
+                           const unsigned int n_run,
+                           const unsigned int handovers) const
   {
     const auto spread = [&](const unsigned long long count) {
       const auto range = Utilities::MPI::min_max_avg(
@@ -182,7 +183,8 @@ namespace rbc_ifem
     pcout << "  per rank and step, least to most over "
           << Utilities::MPI::n_mpi_processes(communicator) << ": "
           << collectives << " collective MPI calls, " << messages
-          << " messages sent, " << bytes << " bytes sent (MpiTraffic)"
+          << " messages sent, " << bytes << " bytes sent (MpiTraffic); "
+          << handovers << " hand-overs of a red cell to another rank"
           << std::endl;
   }
 

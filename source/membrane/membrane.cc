@@ -162,7 +162,14 @@ namespace rbc_ifem
       }
     area0   = area(reference);
     volume0 = volume(reference);
-    metric  = ReferenceMetric();
+    forget_owner_data();
+  }
+
+  void
+  Membrane::forget_owner_data()
+  {
+    metric = ReferenceMetric();
+    stiffness_sparsity.reinit(0, 0, 0);
   }
 
   const DoFHandler<2, 3> &

@@ -14,21 +14,45 @@ namespace rbc_ifem
   /**
    * Which rank owns which red cell: the one rank that computes the cell's
    * membrane mechanics (its forces and tangent stiffness,
-   * MembraneElasticity) and writes its files. Cell c belongs to rank c
-   * modulo the ranks, which shares N cells out evenly. Every rank still
-   * holds every cell's positions and gets every cell's results, summed
-   * over the owners in one reduction for all cells (add_up()): its
-   * elasticity, its contact with cells near it and the forces that hold or
-   * push it (CellForce). Issue 51
-   * goes on to owners chosen by where the cells are, with ghost copies
-   * near them instead of every cell everywhere.
+   * MembraneElasticity) and writes its files. The owners are chosen by
+   * where the cells are (place()): ranks take runs of the cells in their
+   * order along the capillary, as even as N cells allow, so that a rank's
+   * cells are neighbours and its contact search sees few cells of other
+   * ranks (ghosts). As the cells flow the order changes (a cell crossing
+   * the end of a periodic segment goes from the last run to the first)
+   * and cells are handed over between steps. Every rank still holds every
+   * cell's positions and gets every cell's results, summed over the
+   * owners in one reduction for all cells (add_up()): its elasticity, its
+   * contact with cells near it and the forces that hold or push it
+   * (CellForce). Issue 51 goes on to ghost copies near the owned cells
+   * instead of every cell everywhere.
    */
   class CellOwners
   {
   public:
-    /// The cells shared out over the ranks of @p communicator; with
-    /// MPI_COMM_SELF (the default) this rank owns every cell.
+    /// The cells shared out over the ranks of @p communicator, cell c on
+    /// rank c modulo the ranks until place(); with MPI_COMM_SELF (the
+    /// default) this rank owns every cell.
     explicit CellOwners(const MPI_Comm communicator = MPI_COMM_SELF);
+
+    /**
+     * Give the ranks runs of the cells in the order of @p where (each
+     * cell's position along the capillary [µm], the same on every rank),
+     * rank r the positions r N/P to (r + 1) N/P - 1 of that order, ties by
+     * cell number. Returns the cells this rank owned before and no longer
+     * does. Checks, in one reduction of two numbers, that the ranks'
+     * owned cells add up to N and their owned @p points (each cell's
+     * number of points) to the total: no cell lost or doubled, or
+     * std::runtime_error. Collective; nothing to do on one rank.
+     */
+    std::vector<unsigned int>
+    place(const std::vector<double>       &where,
+          const std::vector<unsigned int> &points);
+
+    /// How many times a cell went to another rank in place(), since the
+    /// first placement.
+    unsigned int
+    n_handovers() const;
 
     /// The rank that owns cell @p c.
     unsigned int
@@ -61,6 +85,9 @@ namespace rbc_ifem
     MPI_Comm     communicator;
     unsigned int rank;
     unsigned int n_ranks;
+    /// The owner of each cell, from place(); empty before.
+    std::vector<unsigned int> owner_of;
+    unsigned int              handovers = 0;
     /// What add_up() packs and sends, kept so that a product inside every
     /// linear iteration allocates nothing.
     mutable std::vector<double> packed;

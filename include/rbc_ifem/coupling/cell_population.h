@@ -17,6 +17,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -71,15 +72,23 @@ namespace rbc_ifem
      * With at least as many cells as ranks, each cell has an owner rank
      * (CellOwners) that computes its forces and stiffness alone, added up
      * over the ranks in one reduction; with fewer, every rank takes a share
-     * of every membrane's cell loops (Membrane::share_work()).
+     * of every membrane's cell loops (Membrane::share_work()). The owners
+     * go by where the cells are along the capillary, in a periodic segment
+     * of length @p period if there is one (each cell's mean point wrapped
+     * into it), and are chosen again whenever the cells move.
      */
     void
-    share_work(const MPI_Comm comm);
+    share_work(const MPI_Comm comm, const std::optional<double> &period = {});
 
     /// Which rank owns which cell (share_work(); with fewer cells than
     /// ranks every rank computes every cell, as on one rank).
     const CellOwners &
     owners() const;
+
+    /// The rank of @p communicator that writes cell @p c's files: its owner,
+    /// or with fewer cells than ranks, rank c.
+    unsigned int
+    writer(const unsigned int c, const MPI_Comm communicator) const;
 
     unsigned int
     size() const;
@@ -140,7 +149,9 @@ namespace rbc_ifem
     const std::vector<std::unique_ptr<Membrane>> &
     membranes() const;
 
-    /// Move every point by Δt v: the last of the six steps.
+    /// Move every point by Δt v, the last of the six steps, and choose the
+    /// cells' owners anew (collective after share_work()); a stiffness
+    /// taken before is gone.
     void
     move(const std::vector<Tensor<1, 3>> &velocities, const double time_step);
 
@@ -188,7 +199,7 @@ namespace rbc_ifem
      * (`force`, pN per node) and the same per unit area (`force_density`,
      * pN/µm²), each file carrying @p field_data; returns every cell's file
      * name. Call it on every rank of @p communicator: cell c is written by
-     * rank CellOwners(@p communicator).owner(c) alone.
+     * rank writer(c, @p communicator) alone.
      */
     std::vector<std::string>
     write_vtu(const std::string &directory,
@@ -200,10 +211,20 @@ namespace rbc_ifem
     /// The positions of every cell, for a checkpoint.
     const std::vector<Vector<double>> &
     positions() const;
+    /// Set them, and choose the owners anew as move() does.
     void
     set_positions(const std::vector<Vector<double>> &positions);
 
   private:
+    /**
+     * Give the cells to owners by where they are now (CellOwners::place()),
+     * after share_work(). A rank that hands a cell over forgets its owner
+     * data (Membrane::forget_owner_data()); the stiffness, taken with the
+     * owners before, is dropped.
+     */
+    void
+    place_owners();
+
     /// The shape of cell @p c, whose current @p surface is given.
     CellShape
     shape(const unsigned int c, const Triangulation<2, 3> &surface) const;
@@ -218,7 +239,9 @@ namespace rbc_ifem
     const MappingQ<2, 3>                   flat_mapping;
     std::vector<std::unique_ptr<Membrane>> cell_membranes;
     /// Declared before the forces, which hold it.
-    CellOwners                              cell_owners;
+    CellOwners cell_owners;
+    /// The period of the segment the owners are placed in (share_work()).
+    std::optional<double>                   period;
     std::vector<Vector<double>>             x;
     std::vector<Vector<double>>             forces;
     unsigned int                            n_membrane_points = 0;

@@ -70,10 +70,13 @@ namespace rbc_ifem
      * (MpiTraffic::so_far() after, less before), per step, least to most
      * over the ranks (collective): collective calls, point-to-point
      * messages and their bytes. Whether the communication grows with the
-     * cells (doc/scaling.md).
+     * cells (doc/scaling.md). With them, how many times in the run a red
+     * cell went to another owner, @p handovers (CellOwners::place()).
      */
     void
-    communication(const MpiTraffic &during, const unsigned int n_run) const;
+    communication(const MpiTraffic  &during,
+                  const unsigned int n_run,
+                  const unsigned int handovers) const;
 
   private:
     /// The start-up warnings.

@@ -119,6 +119,15 @@ namespace rbc_ifem
     void
     share_work(const MPI_Comm comm);
 
+    /**
+     * Drop what only the cell's owner needs, its reference metric and the
+     * stiffness's sparsity pattern: made again on the next energy or
+     * stiffness. For a rank that has handed the cell to another
+     * (CellOwners::place()); no stiffness of this membrane may be left.
+     */
+    void
+    forget_owner_data();
+
     /// The reference positions X: every DoF's coordinate on the reference
     /// surface.
     const Vector<double> &

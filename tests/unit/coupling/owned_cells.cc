@@ -6,10 +6,13 @@
 // touches its neighbours (the last the first across the end) and the wall,
 // give every rank the energy, the forces, the products with the tangent
 // stiffness and its diagonal, and the gaps, of the same population computed
-// alone, to round-off (the gaps exactly). Neighbours belong to different
-// ranks, so each pair's contact is split between two owners, each seeing the
-// other's cell as a ghost. Runs on 2 and 3 ranks (five cells share out
-// unevenly) and checks that every cell has one owner.
+// alone, to round-off (the gaps exactly). The ranks own runs of neighbours,
+// so the pairs where two runs meet (and the pair across the end) are split
+// between two owners, each seeing the other's cell as a ghost. Then the
+// train moves along the segment in steps of half a spacing until cells have
+// crossed the end and gone to other ranks: at every step every cell has one
+// owner, the owned points add up, and the forces and K v still equal those
+// computed alone. Runs on 2 and 3 ranks (five cells share out unevenly).
 
 #include <rbc_ifem/coupling/cell_owners.h>
 #include <rbc_ifem/coupling/cell_population.h>
@@ -95,6 +98,36 @@ namespace
       }
     return std::sqrt(difference / norm);
   }
+
+  /// Every cell has one owner and every point is owned once: each rank
+  /// counts the cells and points it owns.
+  void
+  check_owners(Checker &check, const CellPopulation &cells)
+  {
+    const CellOwners  &owners = cells.owners();
+    const unsigned int rank = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+    unsigned int       mine = 0, my_points = 0;
+    bool               agrees = true;
+    for (unsigned int c = 0; c < n_cells; ++c)
+      {
+        mine += owners.owns(c);
+        my_points += owners.owns(c) ? cells.membranes()[c]->nodes().size() : 0;
+        agrees = agrees && owners.owns(c) == (owners.owner(c) == rank);
+      }
+    check.near("cells owned, summed over the ranks",
+               Utilities::MPI::sum(mine, MPI_COMM_WORLD),
+               n_cells,
+               0.);
+    check.near("points owned, summed over the ranks",
+               Utilities::MPI::sum(my_points, MPI_COMM_WORLD),
+               cells.n_points(),
+               0.);
+    check.holds("owns(c) is owner(c) == this rank on every rank",
+                Utilities::MPI::min(static_cast<unsigned int>(agrees),
+                                    MPI_COMM_WORLD) == 1);
+    check.holds("each rank owns a part of the cells, not all",
+                Utilities::MPI::max(mine, MPI_COMM_WORLD) < n_cells);
+  }
 } // namespace
 
 int
@@ -110,7 +143,7 @@ main(int argc, char *argv[])
   cell_parameters.surface_refinements = 2;
   CellPopulation alone(train(), cell_parameters, every_term());
   CellPopulation owned(train(), cell_parameters, every_term());
-  owned.share_work(MPI_COMM_WORLD);
+  owned.share_work(MPI_COMM_WORLD, period);
   for (CellPopulation *cells : {&alone, &owned})
     add_interaction_forces(*cells, every_interaction(), wall_radius, period);
 
@@ -159,24 +192,38 @@ main(int argc, char *argv[])
                                     alone.stiffness_diagonal()),
                 1e-12);
 
-  // Every cell has one owner: each rank counts the cells it owns.
-  const CellOwners  &owners = owned.owners();
-  const unsigned int rank   = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
-  unsigned int       mine   = 0;
-  bool               agrees = true;
-  for (unsigned int c = 0; c < n_cells; ++c)
+  check_owners(check, owned);
+  check.holds("the ranks own runs of neighbours (cells 3 and 4 together)",
+              owned.owners().owner(3) == owned.owners().owner(4));
+
+  // The train moves on by half a spacing at a time, over two spacings: the
+  // last cells cross the end and become the first, and change owner.
+  const std::vector<Tensor<1, 3>> along(alone.n_points(),
+                                        Tensor<1, 3>({spacing / 2., 0., 0.}));
+  double                          forces_moved = 0., products_moved = 0.;
+  for (unsigned int step = 0; step < 4; ++step)
     {
-      mine += owners.owns(c);
-      agrees = agrees && owners.owns(c) == (owners.owner(c) == rank);
+      alone.move(along, 1.);
+      owned.move(along, 1.);
+      check_owners(check, owned);
+      forces_moved = std::max(forces_moved,
+                              relative_difference(owned.compute_forces(),
+                                                  alone.compute_forces()));
+      alone.linearize();
+      owned.linearize();
+      products_moved =
+        std::max(products_moved,
+                 relative_difference(owned.stiffness_product(v),
+                                     alone.stiffness_product(v)));
     }
-  check.near("cells owned, summed over the ranks",
-             Utilities::MPI::sum(mine, MPI_COMM_WORLD),
-             n_cells,
-             0.);
-  check.holds("owns(c) is owner(c) == this rank on every rank",
-              Utilities::MPI::min(static_cast<unsigned int>(agrees),
-                                  MPI_COMM_WORLD) == 1);
-  check.holds("each rank owns a part of the cells, not all",
-              Utilities::MPI::max(mine, MPI_COMM_WORLD) < n_cells);
+  check.at_least("cells handed to another rank as the train moved",
+                 owned.owners().n_handovers(),
+                 2);
+  check.at_most("forces after each move, by owners against alone",
+                forces_moved,
+                1e-12);
+  check.at_most("K v after each move, by owners against alone",
+                products_moved,
+                1e-12);
   return check.exit_code();
 }

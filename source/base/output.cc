@@ -552,12 +552,27 @@ namespace rbc_ifem
     return text + "]";
   }
 
-  double
-  peak_memory_mb(const MPI_Comm communicator)
+  std::string
+  peak_memory_text(const MPI_Comm communicator)
   {
     Utilities::System::MemoryStats memory;
     Utilities::System::get_memory_stats(memory);
-    return Utilities::MPI::max(memory.VmHWM, communicator) / 1024.;
+    const double mb      = memory.VmHWM / 1024.;
+    const bool   first   = Utilities::MPI::this_mpi_process(communicator) == 0;
+    const double largest = Utilities::MPI::max(mb, communicator);
+    std::ostringstream text;
+    text << largest << " MB (largest over ranks";
+    if (Utilities::MPI::n_mpi_processes(communicator) > 1)
+      {
+        // Rank 0 left out of the others' range: it gives the largest to
+        // their least and nothing to their most.
+        const double least =
+          Utilities::MPI::min(first ? largest : mb, communicator);
+        const double most = Utilities::MPI::max(first ? 0. : mb, communicator);
+        text << "; rank 0 " << Utilities::MPI::broadcast(communicator, mb, 0)
+             << " MB, the others " << least << "-" << most << " MB";
+      }
+    return text.str() + ")";
   }
 
   void

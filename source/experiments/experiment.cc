@@ -74,8 +74,7 @@ namespace rbc_ifem
                    [&]() { write_timing(timer, directory, communicator); });
     pcout << "  wrote " << directory
           << "/: " << written_files(directory, communicator) << std::endl;
-    pcout << "  peak memory: " << peak_memory_mb(communicator)
-          << " MB (largest over ranks)" << std::endl;
+    pcout << "  peak memory: " << peak_memory_text(communicator) << std::endl;
   }
 
   void

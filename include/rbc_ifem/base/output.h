@@ -190,9 +190,15 @@ namespace rbc_ifem
                  const unsigned int done,
                  const unsigned int left);
 
-  /// The peak resident memory of the largest rank, in MB.
-  double
-  peak_memory_mb(const MPI_Comm communicator);
+  /**
+   * The peak resident memory of the largest rank in MB, and on more than
+   * one rank that of rank 0 and the least to most of the others: "X MB
+   * (largest over ranks; rank 0 A MB, the others B-C MB)". Rank 0 alone
+   * builds the meshes whole (doc/scaling.md), which the split shows.
+   * Collective.
+   */
+  std::string
+  peak_memory_text(const MPI_Comm communicator);
 
   /// timing.csv (section,calls,wall_seconds) from a TimerOutput, rank 0.
   void

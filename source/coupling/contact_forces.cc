@@ -433,28 +433,42 @@ namespace rbc_ifem
     return stages;
   }
 
+  std::vector<std::unique_ptr<GapPotential>>
+  cell_potentials(const InteractionParameters &parameters)
+  {
+    std::vector<std::unique_ptr<GapPotential>> potentials;
+    if (parameters.repulsion_pressure > 0.)
+      potentials.push_back(
+        std::make_unique<RepulsivePotential>(parameters.repulsion_pressure,
+                                             parameters.repulsion_range));
+    if (parameters.aggregation)
+      potentials.push_back(
+        std::make_unique<MorsePotential>(parameters.aggregation_energy,
+                                         parameters.aggregation_width,
+                                         parameters.aggregation_distance,
+                                         parameters.aggregation_cutoff));
+    return potentials;
+  }
+
+  double
+  contact_reach(const InteractionParameters &parameters)
+  {
+    double reach = 0.;
+    for (const auto &potential : cell_potentials(parameters))
+      reach = std::max(reach, potential->cutoff());
+    return reach;
+  }
+
   void
   add_interaction_forces(CellPopulation              &cells,
                          const InteractionParameters &parameters,
                          const std::optional<double>  wall_radius,
                          const std::optional<double>  period)
   {
-    if (parameters.repulsion_pressure > 0. && cells.size() > 1)
-      cells.add_force(std::make_unique<MembraneInteraction>(
-        cells.membranes(),
-        std::make_unique<RepulsivePotential>(parameters.repulsion_pressure,
-                                             parameters.repulsion_range),
-        period,
-        cells.owners()));
-    if (parameters.aggregation && cells.size() > 1)
-      cells.add_force(std::make_unique<MembraneInteraction>(
-        cells.membranes(),
-        std::make_unique<MorsePotential>(parameters.aggregation_energy,
-                                         parameters.aggregation_width,
-                                         parameters.aggregation_distance,
-                                         parameters.aggregation_cutoff),
-        period,
-        cells.owners()));
+    if (cells.size() > 1)
+      for (auto &potential : cell_potentials(parameters))
+        cells.add_force(std::make_unique<MembraneInteraction>(
+          cells.membranes(), std::move(potential), period, cells.owners()));
     if (parameters.wall_pressure > 0. && wall_radius)
       cells.add_force(std::make_unique<WallRepulsion>(
         cells.membranes(),

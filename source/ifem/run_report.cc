@@ -1,6 +1,7 @@
 #include <rbc_ifem/base/input_error.h>
 #include <rbc_ifem/base/output.h>
 #include <rbc_ifem/coupling/cell_boxes.h>
+#include <rbc_ifem/coupling/contact_forces.h>
 #include <rbc_ifem/ifem/run_report.h>
 
 #include <algorithm>
@@ -136,14 +137,9 @@ namespace rbc_ifem
       owned += cells.owners().owns(c);
     // The ghosts: the other cells within contact reach of the owned ones,
     // whose points the rank's contact search sees (MembraneInteraction).
-    const InteractionParameters &contact = parameters.interactions;
-    double                       reach =
-      contact.repulsion_pressure > 0. ? contact.repulsion_range : 0.;
-    if (contact.aggregation)
-      reach = std::max(reach, contact.aggregation_cutoff);
     const std::vector<bool> near =
       CellBoxes(cells.membranes(), cells.positions(), domain.period)
-        .near_owned(cells.owners(), reach);
+        .near_owned(cells.owners(), contact_reach(parameters.interactions));
     const unsigned int ghosts =
       std::count(near.begin(), near.end(), true) - owned;
     const auto spread = [this](const unsigned int n) {

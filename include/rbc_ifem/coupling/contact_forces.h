@@ -214,6 +214,21 @@ namespace rbc_ifem
   };
 
   /**
+   * The potentials between cells that subsection Cell interactions switches
+   * on: the repulsion and the aggregation's Morse attraction, each if on.
+   */
+  std::vector<std::unique_ptr<GapPotential>>
+  cell_potentials(const InteractionParameters &parameters);
+
+  /**
+   * How far the forces between cells reach: the largest cutoff of
+   * cell_potentials(), 0 with none [µm]. A rank's contact search sees the
+   * cells within it of its own (its ghosts, RunReport::load_balance()).
+   */
+  double
+  contact_reach(const InteractionParameters &parameters);
+
+  /**
    * Add the forces of subsection Cell interactions to @p cells: the
    * repulsion between cells and the aggregation (if on), across the ends
    * of a segment with a @p period, and the repulsion from a capillary wall

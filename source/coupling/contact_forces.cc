@@ -400,9 +400,16 @@ namespace rbc_ifem
   unsigned int
   WallRepulsion::squeeze_into_lumen(std::vector<Vector<double>> &x) const
   {
-    unsigned int stages = 0;
+    // Each cell is squeezed alone, by its owner, along the same path as
+    // on one rank; the others' positions are zero here until the sum.
+    double stages = 0.;
     for (unsigned int c = 0; c < membranes.size(); ++c)
       {
+        if (!owners.owns(c))
+          {
+            x[c] = 0.;
+            continue;
+          }
         const auto widest = [&]() {
           double rho = 0.;
           for (const auto &dofs : membranes[c]->nodes())
@@ -430,7 +437,8 @@ namespace rbc_ifem
             ++stages;
           }
       }
-    return stages;
+    owners.add_up(x, make_array_view(&stages, &stages + 1));
+    return static_cast<unsigned int>(stages);
   }
 
   std::vector<std::unique_ptr<GapPotential>>

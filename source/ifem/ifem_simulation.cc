@@ -122,13 +122,13 @@ namespace rbc_ifem
     if (parameters.immersed.squeeze_into_lumen)
       {
         TimerOutput::Scope  scope(timer, "squeeze into lumen");
-        const CellOwners    this_rank_alone;
+        const CellOwners    squeezers(communicator);
         const WallRepulsion wall(
           cells.membranes(),
           *domain.wall_radius,
           RepulsivePotential(parameters.interactions.wall_pressure,
                              parameters.interactions.wall_range),
-          this_rank_alone);
+          squeezers);
         std::vector<Vector<double>> x      = cells.positions();
         const unsigned int          stages = wall.squeeze_into_lumen(x);
         cells.set_positions(x);
@@ -138,9 +138,9 @@ namespace rbc_ifem
     // The membranes are replicated; from here on their forces and stiffness
     // are shared out over the ranks (by cell, or within each membrane when
     // there are fewer cells than ranks), which compute them together.
-    // The squeeze above runs on every rank alone, so that its L-BFGS path,
-    // and the squeezed shape within its tolerance, are the same for any
-    // number of ranks.
+    // The squeeze above shares the cells out (cell c on rank c modulo the
+    // ranks) but squeezes each on one rank alone, so that its L-BFGS path,
+    // and the squeezed shape, are the same for any number of ranks.
     cells.share_work(communicator, domain.period);
     std::vector<std::shared_ptr<const Triangulation<3>>> coarser_meshes;
     {

@@ -193,7 +193,9 @@ namespace rbc_ifem
      * to the capillary's radius, and at each stage the membrane (its
      * reference shape unchanged) is relaxed to its static equilibrium
      * against it (find_equilibrium()). @p x, one Vector per cell, is
-     * replaced by the squeezed positions. Returns the number of stages.
+     * replaced by the squeezed positions. Each cell is squeezed by its
+     * owner alone and the positions shared in one sum (collective), the
+     * same as on one rank. Returns the number of stages of all cells.
      */
     unsigned int
     squeeze_into_lumen(std::vector<Vector<double>> &x) const;

@@ -12,7 +12,9 @@
 // train moves along the segment in steps of half a spacing until cells have
 // crossed the end and gone to other ranks: at every step every cell has one
 // owner, the owned points add up, and the forces and K v still equal those
-// computed alone. Runs on 2 and 3 ranks (five cells share out unevenly).
+// computed alone. Last, squeezed into a narrower capillary by their owners,
+// the cells take the shapes squeezed on one rank, bit for bit. Runs on 2 and
+// 3 ranks (five cells share out unevenly).
 
 #include <rbc_ifem/coupling/cell_owners.h>
 #include <rbc_ifem/coupling/cell_population.h>
@@ -37,6 +39,8 @@ namespace
   /// The periodic segment, so that cell 4 meets cell 0 across the end.
   constexpr double period      = n_cells * spacing;
   constexpr double wall_radius = 4.3; ///< a cell's radius is 3.9 µm
+  /// A capillary the cells must be squeezed into (squeeze_into_lumen()).
+  constexpr double narrow_radius = 3.6;
 
   std::vector<CellPlacement>
   train()
@@ -225,5 +229,24 @@ main(int argc, char *argv[])
   check.at_most("K v after each move, by owners against alone",
                 products_moved,
                 1e-12);
+
+  // Squeezed into a narrower capillary by their owners, each cell alone,
+  // the cells take the same shapes, bit for bit, as squeezed on one rank.
+  const auto squeezed = [](const CellPopulation        &cells,
+                           std::vector<Vector<double>> &x) {
+    x = cells.positions();
+    return WallRepulsion(cells.membranes(),
+                         narrow_radius,
+                         RepulsivePotential(10., 0.3),
+                         cells.owners())
+      .squeeze_into_lumen(x);
+  };
+  std::vector<Vector<double>> x_alone, x_owned;
+  const unsigned int          stages_alone = squeezed(alone, x_alone);
+  check.at_least("stages of the squeeze, alone", stages_alone, n_cells);
+  check.holds("stages by owners as alone",
+              squeezed(owned, x_owned) == stages_alone);
+  check.holds("squeezed positions by owners equal those alone",
+              x_owned == x_alone);
   return check.exit_code();
 }

@@ -30,7 +30,9 @@ read -r -a cells <<<"${cells[*]}"
 run() {
   local cells=(--set "Immersed cells/Enabled=false")
   if [ "$1" -gt 0 ]; then
-    cells=(--set "Geometry/Capillary length=$((5 * $1))" --set "Layout/Number of cells=$1")
+    # The membranes grouped: a piece per rank, not a file per cell.
+    cells=(--set "Geometry/Capillary length=$((5 * $1))" --set "Layout/Number of cells=$1"
+      --set "Immersed cells/Membrane files=grouped")
   fi
   mpirun --oversubscribe -np "$ranks" "$exe" "$(dirname "$here")/prm/default.prm" \
     --set "Output directory=run_$1" --set "Time/Number of steps=3" \

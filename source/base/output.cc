@@ -10,6 +10,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -20,6 +21,7 @@
 #include <iomanip>
 #include <map>
 #include <memory>
+#include <numeric>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -90,19 +92,36 @@ namespace rbc_ifem
                    const MPI_Comm                         communicator,
                    const FieldData                       &field_data)
   {
+    std::vector<unsigned int> everyone(
+      Utilities::MPI::n_mpi_processes(communicator));
+    std::iota(everyone.begin(), everyone.end(), 0u);
+    return write_vtu_pieces(
+      data_out, directory, name, counter, everyone, communicator, field_data);
+  }
+
+  template <int dim, int spacedim>
+  std::string
+  write_vtu_pieces(const DataOutInterface<dim, spacedim> &data_out,
+                   const std::string                     &directory,
+                   const std::string                     &name,
+                   const unsigned int                     counter,
+                   const std::vector<unsigned int>       &writers,
+                   const MPI_Comm                         communicator,
+                   const FieldData                       &field_data)
+  {
+    Assert(std::is_sorted(writers.begin(), writers.end()),
+           ExcMessage("The writers must be sorted."));
     const std::string stem  = name + "_" + Utilities::int_to_string(counter, 4);
     const auto        piece = [&](const unsigned int rank) {
       return stem + "." + Utilities::int_to_string(rank) + ".vtu";
     };
     const unsigned int rank = Utilities::MPI::this_mpi_process(communicator);
     write_vtu(data_out, directory + "/" + piece(rank), field_data);
-    if (rank == 0)
+    if (rank == writers.front())
       {
         std::vector<std::string> pieces;
-        for (unsigned int r = 0;
-             r < Utilities::MPI::n_mpi_processes(communicator);
-             ++r)
-          pieces.push_back(piece(r));
+        for (const unsigned int writer : writers)
+          pieces.push_back(piece(writer));
         write_file_atomically(directory + "/" + stem + ".pvtu",
                               [&](std::ostream &out) {
                                 data_out.write_pvtu_record(out, pieces);
@@ -124,6 +143,14 @@ namespace rbc_ifem
                    const std::string &,
                    const std::string &,
                    const unsigned int,
+                   const MPI_Comm,
+                   const FieldData &);
+  template std::string
+  write_vtu_pieces(const DataOutInterface<2, 3> &,
+                   const std::string &,
+                   const std::string &,
+                   const unsigned int,
+                   const std::vector<unsigned int> &,
                    const MPI_Comm,
                    const FieldData &);
 

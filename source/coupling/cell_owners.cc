@@ -1,3 +1,4 @@
+#include <rbc_ifem/base/ranks.h>
 #include <rbc_ifem/coupling/cell_owners.h>
 
 #include <algorithm>
@@ -7,25 +8,10 @@
 
 namespace rbc_ifem
 {
-  namespace
-  {
-    /// The ranks of @p comm; 1 in a program that never started MPI (a
-    /// serial test).
-    unsigned int
-    n_ranks_of(const MPI_Comm comm)
-    {
-      return Utilities::MPI::job_supports_mpi() ?
-               Utilities::MPI::n_mpi_processes(comm) :
-               1;
-    }
-  } // namespace
-
   CellOwners::CellOwners(const MPI_Comm communicator)
     : communicator(communicator)
-    , rank(n_ranks_of(communicator) == 1 ?
-             0 :
-             Utilities::MPI::this_mpi_process(communicator))
-    , n_ranks(n_ranks_of(communicator))
+    , rank(this_rank(communicator))
+    , n_ranks(rbc_ifem::n_ranks(communicator))
   {}
 
   std::vector<unsigned int>

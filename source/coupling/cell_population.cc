@@ -1,12 +1,18 @@
+#include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/ranks.h>
 #include <rbc_ifem/coupling/cell_population.h>
 #include <rbc_ifem/coupling/membrane_forces.h>
 #include <rbc_ifem/geometry/capillary_mesh.h>
 #include <rbc_ifem/geometry/cell_surface.h>
 #include <rbc_ifem/membrane/deformed_surface_mapping.h>
 
+#include <deal.II/numerics/data_out.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
+#include <set>
 
 namespace rbc_ifem
 {
@@ -62,6 +68,15 @@ namespace rbc_ifem
   {
     return cell_owners.shared() ? cell_owners.owner(c) :
                                   CellOwners(communicator).owner(c);
+  }
+
+  std::vector<unsigned int>
+  CellPopulation::writers(const MPI_Comm communicator) const
+  {
+    std::set<unsigned int> ranks;
+    for (unsigned int c = 0; c < size(); ++c)
+      ranks.insert(writer(c, communicator));
+    return {ranks.begin(), ranks.end()};
   }
 
   void
@@ -430,27 +445,67 @@ namespace rbc_ifem
                             const FieldData   &field_data,
                             const MPI_Comm     communicator) const
   {
-    const unsigned int       rank = Utilities::MPI::job_supports_mpi() ?
-                                      Utilities::MPI::this_mpi_process(communicator) :
-                                      0;
+    const unsigned int       rank = this_rank(communicator);
     std::vector<std::string> files;
     for (unsigned int c = 0; c < size(); ++c)
       {
-        const std::string file = name + "_" + std::to_string(c) + "_" +
-                                 Utilities::int_to_string(counter, 4);
-        files.push_back(file + ".vtu");
+        files.push_back(name + "_" + std::to_string(c) + "_" +
+                        Utilities::int_to_string(counter, 4) + ".vtu");
         if (writer(c, communicator) != rank)
           continue;
-        const Vector<double> density =
-          cell_membranes[c]->force_densities(x[c], forces[c]);
-        cell_membranes[c]->write_vtu(x[c],
-                                     directory,
-                                     file,
-                                     {{"force", forces[c]},
-                                      {"force_density", density}},
-                                     field_data);
+        DataOut<2, 3> data_out;
+        build_patches(c, data_out);
+        data_out.set_flags(fast_vtk_flags());
+        rbc_ifem::write_vtu(data_out,
+                            directory + "/" + files.back(),
+                            field_data);
       }
     return files;
+  }
+
+  std::string
+  CellPopulation::write_grouped_vtu(const std::string &directory,
+                                    const std::string &name,
+                                    const unsigned int counter,
+                                    const FieldData   &field_data,
+                                    const MPI_Comm     communicator) const
+  {
+    const std::vector<unsigned int> ranks = writers(communicator);
+    const unsigned int              rank  = this_rank(communicator);
+    // The first of this rank's cells takes the patches of the others.
+    std::optional<DataOut<2, 3>> own;
+    for (unsigned int c = 0; c < size(); ++c)
+      if (writer(c, communicator) == rank)
+        {
+          if (!own)
+            build_patches(c, own.emplace());
+          else
+            {
+              DataOut<2, 3> next;
+              build_patches(c, next);
+              own->merge_patches(next);
+            }
+        }
+    const std::string file =
+      name + "_" + Utilities::int_to_string(counter, 4) + ".pvtu";
+    if (!own)
+      return file;
+    own->set_flags(fast_vtk_flags());
+    return write_vtu_pieces(
+      *own, directory, name, counter, ranks, communicator, field_data);
+  }
+
+  void
+  CellPopulation::build_patches(const unsigned int c,
+                                DataOut<2, 3>     &data_out) const
+  {
+    const Vector<double> density =
+      cell_membranes[c]->force_densities(x[c], forces[c]);
+    cell_membranes[c]->build_patches(data_out,
+                                     x[c],
+                                     {{"force", forces[c]},
+                                      {"force_density", density}},
+                                     {{"cell", c}});
   }
 
   const std::vector<Vector<double>> &

@@ -12,6 +12,7 @@
 #include <rbc_ifem/geometry/capillary_mesh.h>
 #include <rbc_ifem/geometry/mesh_hierarchy.h>
 #include <rbc_ifem/ifem/ifem_simulation.h>
+#include <rbc_ifem/ifem/membrane_series.h>
 
 #include <cmath>
 #include <iomanip>
@@ -548,19 +549,12 @@ namespace rbc_ifem
       record.fluid_files.emplace_back(
         record.time, fluid.write_vtu(directory, record.step, frame_data()));
       write_pvd(directory, "flow", record.fluid_files, communicator);
-      // Each cell's files by one rank; every rank keeps every cell's list,
-      // which a checkpoint holds.
-      const std::vector<std::string> files = cells.write_vtu(
-        directory, "cell", record.step, frame_data(), communicator);
-      for (unsigned int c = 0; c < cells.size(); ++c)
-        {
-          record.cell_files[c].emplace_back(record.time, files[c]);
-          write_pvd(directory,
-                    "cell_" + std::to_string(c),
-                    record.cell_files[c],
-                    communicator,
-                    cells.writer(c, communicator));
-        }
+      write_membrane_series(cells,
+                            parameters.immersed.membrane_files,
+                            record,
+                            directory,
+                            frame_data(),
+                            communicator);
     });
   }
 

@@ -17,6 +17,15 @@ namespace rbc_ifem
     return names;
   }
 
+  const SelectionNames<MembraneFiles> &
+  membrane_files_names()
+  {
+    static const SelectionNames<MembraneFiles> names{
+      {MembraneFiles::per_cell, "per cell"},
+      {MembraneFiles::grouped, "grouped"}};
+    return names;
+  }
+
   void
   TimeParameters::add_parameters(ParameterHandler &prm)
   {
@@ -145,8 +154,8 @@ namespace rbc_ifem
                   "Resume",
                   resume,
                   "Continue from Output directory/checkpoint.bin, written "
-                  "by an earlier run of the same file on the same number "
-                  "of MPI ranks, up to Time/Number of steps.");
+                  "by an earlier run of the same file (on any number of "
+                  "MPI ranks), up to Time/Number of steps.");
     add_parameter(prm,
                   "Progress interval",
                   progress_interval,
@@ -155,6 +164,20 @@ namespace rbc_ifem
                   "cell 0) every this many steps, and at every diffusion "
                   "solve (with DM) and output.",
                   Patterns::Integer(1));
+    add_selection(
+      prm,
+      "Membrane files",
+      membrane_files,
+      membrane_files_names(),
+      "How the membranes are written at every output (doc/outputs.md). "
+      "per cell (the default, which the scripts of doc/scripts read): "
+      "cell_C_SSSS.vtu and the series cell_C.pvd for every cell C, each "
+      "by the rank that owns the cell. grouped: one series membranes.pvd "
+      "of all cells, each output one membranes_SSSS.pvtu whose pieces are "
+      "written by the ranks that own cells, each piece those cells with "
+      "the field cell (the index): a few files per output however many "
+      "the cells, and one series to open in ParaView; choose it for tens "
+      "of cells or more.");
   }
 
   void

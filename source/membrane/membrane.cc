@@ -317,9 +317,7 @@ namespace rbc_ifem
   Membrane::share(const unsigned int n) const
   {
     const unsigned int size = n_ranks(communicator),
-                       rank = size == 1 ?
-                                0 :
-                                Utilities::MPI::this_mpi_process(communicator);
+                       rank = this_rank(communicator);
     return {static_cast<unsigned int>(std::uint64_t(n) * rank / size),
             static_cast<unsigned int>(std::uint64_t(n) * (rank + 1) / size)};
   }
@@ -550,12 +548,24 @@ namespace rbc_ifem
     const std::vector<std::pair<std::string, Vector<double>>> &dof_vectors,
     const FieldData                                           &field_data) const
   {
+    DataOut<2, 3> data_out;
+    build_patches(data_out, x, dof_vectors);
+    data_out.set_flags(fast_vtk_flags());
+    rbc_ifem::write_vtu(data_out, directory + "/" + name + ".vtu", field_data);
+  }
+
+  void
+  Membrane::build_patches(
+    DataOut<2, 3>                                             &data_out,
+    const Vector<double>                                      &x,
+    const std::vector<std::pair<std::string, Vector<double>>> &dof_vectors,
+    const std::vector<std::pair<std::string, double>> &cell_constants) const
+  {
     Vector<double> displacement(x);
     displacement -= reference;
     const MappingFEField<2, 3, Vector<double>> mapping(dof_handler, x);
     const std::vector<DataComponentInterpretation::DataComponentInterpretation>
       vector_field(3, DataComponentInterpretation::component_is_part_of_vector);
-    DataOut<2, 3> data_out;
     data_out.attach_dof_handler(dof_handler);
     data_out.add_data_vector(displacement,
                              std::vector<std::string>(3, "displacement"),
@@ -570,11 +580,20 @@ namespace rbc_ifem
     data_out.add_data_vector(area_changes,
                              "area_change",
                              DataOut<2, 3>::type_cell_data);
+    // The vectors must live until the patches are built.
+    std::vector<Vector<double>> constants;
+    constants.reserve(cell_constants.size());
+    for (const auto &[field_name, value] : cell_constants)
+      {
+        constants.emplace_back(area_changes.size());
+        constants.back() = value;
+        data_out.add_data_vector(constants.back(),
+                                 field_name,
+                                 DataOut<2, 3>::type_cell_data);
+      }
     data_out.build_patches(mapping,
                            std::max(2u, parameters.degree),
                            DataOut<2, 3>::curved_inner_cells);
-    data_out.set_flags(fast_vtk_flags());
-    rbc_ifem::write_vtu(data_out, directory + "/" + name + ".vtu", field_data);
   }
 
   void

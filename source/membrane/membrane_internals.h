@@ -6,6 +6,7 @@
 // point-level terms of the energy, the sums they make and the sharing of
 // work over ranks. Private to those files, so not under include/.
 
+#include <rbc_ifem/base/ranks.h>
 #include <rbc_ifem/membrane/membrane.h>
 
 #include <deal.II/base/mpi.h>
@@ -69,16 +70,6 @@ namespace rbc_ifem
 
   namespace MembraneInternals
   {
-    /// The number of ranks of @p comm; 1 in a program that never started
-    /// MPI (a serial test).
-    inline unsigned int
-    n_ranks(const MPI_Comm comm)
-    {
-      return Utilities::MPI::job_supports_mpi() ?
-               Utilities::MPI::n_mpi_processes(comm) :
-               1;
-    }
-
     /// Replace @p values on every rank of @p comm by their sum over the ranks.
     inline void
     add_up_over_ranks(const ArrayView<double> &values, const MPI_Comm comm)

@@ -75,6 +75,22 @@ namespace rbc_ifem
                    const MPI_Comm                         communicator,
                    const FieldData                       &field_data = {});
 
+  /**
+   * The same for the ranks @p writers of @p communicator only (sorted; the
+   * others have nothing to show and write nothing): each its piece
+   * NAME_CCCC.RANK.vtu, the first of them the NAME_CCCC.pvtu that joins
+   * them. Call it on the @p writers alone; it waits for no other rank.
+   */
+  template <int dim, int spacedim>
+  std::string
+  write_vtu_pieces(const DataOutInterface<dim, spacedim> &data_out,
+                   const std::string                     &directory,
+                   const std::string                     &name,
+                   const unsigned int                     counter,
+                   const std::vector<unsigned int>       &writers,
+                   const MPI_Comm                         communicator,
+                   const FieldData                       &field_data = {});
+
   /// Write NAME.pvd listing (time, file) pairs, on rank @p writer of
   /// @p communicator only.
   void

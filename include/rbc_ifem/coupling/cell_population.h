@@ -90,6 +90,10 @@ namespace rbc_ifem
     unsigned int
     writer(const unsigned int c, const MPI_Comm communicator) const;
 
+    /// The ranks that write cells' files, writer(c) of some cell c, sorted.
+    std::vector<unsigned int>
+    writers(const MPI_Comm communicator) const;
+
     unsigned int
     size() const;
     unsigned int
@@ -208,6 +212,20 @@ namespace rbc_ifem
               const FieldData   &field_data   = {},
               const MPI_Comm     communicator = MPI_COMM_SELF) const;
 
+    /**
+     * The same fields of every cell in one grouped file: each rank of
+     * writers() its cells as the piece NAME_CCCC.RANK.vtu, with the cell
+     * field `cell` (the cell's index), and the first of them the
+     * NAME_CCCC.pvtu that joins the pieces, whose name it returns. Call it
+     * on every rank; it waits for no other.
+     */
+    std::string
+    write_grouped_vtu(const std::string &directory,
+                      const std::string &name,
+                      const unsigned int counter,
+                      const FieldData   &field_data,
+                      const MPI_Comm     communicator) const;
+
     /// The positions of every cell, for a checkpoint.
     const std::vector<Vector<double>> &
     positions() const;
@@ -224,6 +242,10 @@ namespace rbc_ifem
      */
     void
     place_owners();
+
+    /// The output of cell @p c (write_vtu()) as the patches of @p data_out.
+    void
+    build_patches(const unsigned int c, DataOut<2, 3> &data_out) const;
 
     /// The shape of cell @p c, whose current @p surface is given.
     CellShape

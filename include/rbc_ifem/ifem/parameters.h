@@ -28,6 +28,20 @@ namespace rbc_ifem
   const SelectionNames<CouplingScheme> &
   coupling_scheme_names();
 
+  /// How a flowing run writes its membranes (Immersed cells/Membrane files).
+  enum class MembraneFiles
+  {
+    /// cell_C_SSSS.vtu and cell_C.pvd for every cell C
+    per_cell,
+    /// membranes_SSSS.pvtu, one piece per rank with the cells it owns, and
+    /// membranes.pvd
+    grouped
+  };
+
+  /// The names of MembraneFiles in the parameter file.
+  const SelectionNames<MembraneFiles> &
+  membrane_files_names();
+
   /**
    * Time stepping of the flowing runs (subsection "Time"). The initializers
    * are the defaults (see GeometryParameters).
@@ -77,7 +91,8 @@ namespace rbc_ifem
     double max_step_displacement = 0.25; ///< of the fluid mesh size h, per step
     double max_volume_change     = 0.05; ///< of a cell's reference volume
     unsigned int progress_interval =
-      10;                         ///< a progress line every this many steps
+      10; ///< a progress line every this many steps
+    MembraneFiles membrane_files = MembraneFiles::per_cell;
     double tether_stiffness = 0.; ///< springs to the start [pN/µm]; 0: free
     /// Let a cell wider than the lumen start squeezed into it.
     bool squeeze_into_lumen = false;
@@ -93,7 +108,8 @@ namespace rbc_ifem
     /// The entries of the coupling: Enabled, Follow cells, Coupling.
     void
     add_coupling_parameters(ParameterHandler &prm);
-    /// The entries of what a run does when: the intervals and Resume.
+    /// The entries of what a run does when and writes: the intervals,
+    /// Resume and Membrane files.
     void
     add_schedule_parameters(ParameterHandler &prm);
     /// The entries of the cells' guard and forces: Maximum step

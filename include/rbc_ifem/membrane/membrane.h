@@ -23,6 +23,12 @@
 #include <utility>
 #include <vector>
 
+namespace dealii
+{
+  template <int dim, int spacedim>
+  class DataOut;
+} // namespace dealii
+
 namespace rbc_ifem
 {
   using namespace dealii;
@@ -211,6 +217,21 @@ namespace rbc_ifem
               const std::vector<std::pair<std::string, Vector<double>>>
                               &dof_vectors = {},
               const FieldData &field_data  = {}) const;
+
+    /**
+     * What write_vtu() writes, as the patches of @p data_out (a new one:
+     * it is attached to this membrane and its patches built here), with
+     * each (name, value) of @p cell_constants as one more cell field, the
+     * same on every cell (a cell's index among many, say). DataOut's
+     * merge_patches() joins the patches of several membranes into one file.
+     */
+    void
+    build_patches(
+      DataOut<2, 3>                                             &data_out,
+      const Vector<double>                                      &x,
+      const std::vector<std::pair<std::string, Vector<double>>> &dof_vectors,
+      const std::vector<std::pair<std::string, double>> &cell_constants = {})
+      const;
 
     /**
      * The surface x as a mesh with flat cells between its vertices (the

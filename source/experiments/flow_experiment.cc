@@ -36,11 +36,12 @@ namespace rbc_ifem
       coarser_meshes              = create_distributed_mesh_hierarchy(
         triangulation,
         [&](Triangulation<3> &serial) {
-          create_fluid_mesh(serial,
-                            parameters.geometry,
-                            parameters.mesh.fluid_global_refinements);
+          create_fluid_mesh(serial, parameters.geometry, 0);
           if (periodic)
             add_end_periodicity(serial);
+        },
+        [&](Triangulation<3> &serial, const MeshZone &zone) {
+          zone.refine_global(serial, parameters.mesh.fluid_global_refinements);
         },
         periodic);
     }

@@ -314,7 +314,8 @@ namespace rbc_ifem
   refine_near_points(Triangulation<3>            &triangulation,
                      const std::vector<Point<3>> &points,
                      const double                 band_width,
-                     const unsigned int           n_steps)
+                     const unsigned int           n_steps,
+                     const MeshZone              &zone)
   {
     if (points.empty())
       return;
@@ -326,7 +327,8 @@ namespace rbc_ifem
         // in the band: a cell left alone once keeps failing the test.
         const unsigned int finest = triangulation.n_levels() - 1;
         for (const auto &cell : triangulation.active_cell_iterators())
-          if (step == 0 || cell->level() == static_cast<int>(finest))
+          if ((step == 0 || cell->level() == static_cast<int>(finest)) &&
+              zone.contains(cell))
             {
               const Point<3> centre = cell->center();
               for (const Point<3> &nearest :

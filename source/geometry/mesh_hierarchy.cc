@@ -1,10 +1,14 @@
 #include <rbc_ifem/geometry/capillary_mesh.h>
 #include <rbc_ifem/geometry/mesh_hierarchy.h>
+#include <rbc_ifem/geometry/mesh_zone.h>
 
 #include <deal.II/distributed/shared_tria.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/manifold_lib.h>
 #include <deal.II/grid/tria_description.h>
+
+#include <algorithm>
+#include <optional>
 
 namespace rbc_ifem
 {
@@ -78,29 +82,53 @@ namespace rbc_ifem
 
   namespace
   {
-    /// Build @p mesh from the serial mesh @p make builds on rank 0.
+    /// The length along x of the coarse mesh @p mesh.
+    double
+    x_length(const Triangulation<3> &mesh)
+    {
+      double low = mesh.get_vertices()[0][0], high = low;
+      for (const Point<3> &vertex : mesh.get_vertices())
+        {
+          low  = std::min(low, vertex[0]);
+          high = std::max(high, vertex[0]);
+        }
+      return high - low;
+    }
+
+    /**
+     * Build @p mesh on every rank from the rank's own part of the serial
+     * mesh: @p coarse the whole coarse mesh, @p refine its zone's cells
+     * (MeshZone), coarsened @p n_coarsenings times for a multigrid level.
+     */
     void
-    distribute(parallel::fullydistributed::Triangulation<3>  &mesh,
-               const std::function<void(Triangulation<3> &)> &make,
-               const bool                                     periodic)
+    distribute(
+      parallel::fullydistributed::Triangulation<3>                    &mesh,
+      const std::function<void(Triangulation<3> &)>                   &coarse,
+      const std::function<void(Triangulation<3> &, const MeshZone &)> &refine,
+      const bool                                                       periodic,
+      const unsigned int n_coarsenings)
     {
       const MPI_Comm     communicator = mesh.get_communicator();
-      const unsigned int n_ranks =
-        Utilities::MPI::n_mpi_processes(communicator);
+      const unsigned int rank = Utilities::MPI::this_mpi_process(communicator);
       // Hanging nodes need the description's levels, which limit the level
       // difference at vertices to one.
+      Triangulation<3> serial(
+        Triangulation<3>::limit_level_difference_at_vertices);
+      coarse(serial);
+      const MeshZone zone(serial,
+                          rank,
+                          Utilities::MPI::n_mpi_processes(communicator),
+                          periodic ? std::optional<double>(x_length(serial)) :
+                                     std::nullopt);
+      refine(serial, zone);
+      serial.coarsen_global(n_coarsenings);
+      zone.mark_owners(serial);
       const auto description = TriangulationDescription::Utilities::
-        create_description_from_triangulation_in_groups<3, 3>(
-          make,
-          [n_ranks](Triangulation<3> &serial,
-                    const MPI_Comm &,
-                    const unsigned int) {
-            GridTools::partition_triangulation(n_ranks, serial);
-          },
+        create_description_from_triangulation(
+          serial,
           communicator,
-          n_ranks,
-          Triangulation<3>::none,
-          TriangulationDescription::Settings::construct_multigrid_hierarchy);
+          TriangulationDescription::Settings::construct_multigrid_hierarchy,
+          rank);
       create_capillary_mesh(mesh, description);
       if (periodic)
         add_end_periodicity(mesh);
@@ -109,11 +137,12 @@ namespace rbc_ifem
 
   std::vector<std::shared_ptr<const Triangulation<3>>>
   create_distributed_mesh_hierarchy(
-    parallel::fullydistributed::Triangulation<3>  &fine,
-    const std::function<void(Triangulation<3> &)> &make,
-    const bool                                     periodic)
+    parallel::fullydistributed::Triangulation<3>                    &fine,
+    const std::function<void(Triangulation<3> &)>                   &coarse,
+    const std::function<void(Triangulation<3> &, const MeshZone &)> &refine,
+    const bool                                                       periodic)
   {
-    distribute(fine, make, periodic);
+    distribute(fine, coarse, refine, periodic, 0);
     const unsigned int n_levels = fine.n_global_levels();
     std::vector<std::shared_ptr<const Triangulation<3>>> levels;
     for (unsigned int l = 0; l + 1 < n_levels; ++l)
@@ -121,14 +150,7 @@ namespace rbc_ifem
         auto level =
           std::make_shared<parallel::fullydistributed::Triangulation<3>>(
             fine.get_communicator());
-        distribute(
-          *level,
-          [&](Triangulation<3> &serial) {
-            make(serial);
-            for (unsigned int k = l + 1; k < n_levels; ++k)
-              serial.coarsen_global();
-          },
-          periodic);
+        distribute(*level, coarse, refine, periodic, n_levels - 1 - l);
         levels.push_back(level);
       }
     return levels;

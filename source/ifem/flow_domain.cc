@@ -24,14 +24,12 @@ namespace rbc_ifem
     domain.placements =
       CellLayout(parameters.layout, layout_geometry, parameters.cells)
         .placements();
-    domain.create_mesh = [geometry = parameters.geometry,
-                          refinements =
-                            parameters.mesh.fluid_global_refinements](
-                           Triangulation<3> &triangulation) {
-      create_fluid_mesh(triangulation, geometry, refinements);
-    };
+    domain.create_mesh =
+      [geometry = parameters.geometry](Triangulation<3> &triangulation) {
+        create_fluid_mesh(triangulation, geometry, 0);
+      };
     Triangulation<3> coarse;
-    create_fluid_mesh(coarse, parameters.geometry, 0);
+    domain.create_mesh(coarse);
     domain.n_coarse_cells       = coarse.n_active_cells();
     domain.n_global_refinements = parameters.mesh.fluid_global_refinements;
     domain.volume =
@@ -55,15 +53,12 @@ namespace rbc_ifem
     domain.name        = "the shear box";
     domain.drive       = FlowDrive::shear(shear_rate);
     domain.placements  = {CellPlacement{Point<3>(), parameters.cells.axis}};
-    domain.create_mesh = [box,
-                          cell_size = parameters.cells.diameter,
-                          refinements =
-                            parameters.mesh.fluid_global_refinements](
+    domain.create_mesh = [box, cell_size = parameters.cells.diameter](
                            Triangulation<3> &triangulation) {
-      create_shear_box_mesh(triangulation, box, cell_size, refinements);
+      create_shear_box_mesh(triangulation, box, cell_size, 0);
     };
     Triangulation<3> coarse;
-    create_shear_box_mesh(coarse, box, parameters.cells.diameter, 0);
+    domain.create_mesh(coarse);
     domain.n_coarse_cells       = coarse.n_active_cells();
     domain.n_global_refinements = parameters.mesh.fluid_global_refinements;
     domain.volume               = box[0] * box[1] * box[2];

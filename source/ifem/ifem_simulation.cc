@@ -154,10 +154,14 @@ namespace rbc_ifem
           domain.create_mesh(serial);
           if (domain.period)
             add_end_periodicity(serial);
+        },
+        [&](Triangulation<3> &serial, const MeshZone &zone) {
+          zone.refine_global(serial, domain.n_global_refinements);
           refine_near_points(serial,
                              band,
                              parameters.mesh.band_width,
-                             parameters.mesh.fluid_band_refinements);
+                             parameters.mesh.fluid_band_refinements,
+                             zone);
         },
         domain.period.has_value());
     }

@@ -1,6 +1,7 @@
 #ifndef rbc_ifem_geometry_capillary_mesh_h
 #define rbc_ifem_geometry_capillary_mesh_h
 
+#include <rbc_ifem/geometry/mesh_zone.h>
 #include <rbc_ifem/geometry/parameters.h>
 
 #include <deal.II/base/point.h>
@@ -139,12 +140,14 @@ namespace rbc_ifem
    * @p band_width to one of @p points (e.g. points on the membranes). The
    * distance is taken from the cell centre, less half the cell diameter.
    * Deterministic, so every rank of a shared triangulation does the same.
+   * Only the cells of @p zone (by default the whole mesh) are refined.
    */
   void
   refine_near_points(Triangulation<3>            &triangulation,
                      const std::vector<Point<3>> &points,
                      const double                 band_width,
-                     const unsigned int           n_steps);
+                     const unsigned int           n_steps,
+                     const MeshZone              &zone = MeshZone());
 } // namespace rbc_ifem
 
 #endif

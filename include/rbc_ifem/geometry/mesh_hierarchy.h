@@ -1,6 +1,8 @@
 #ifndef rbc_ifem_geometry_mesh_hierarchy_h
 #define rbc_ifem_geometry_mesh_hierarchy_h
 
+#include <rbc_ifem/geometry/mesh_zone.h>
+
 #include <deal.II/distributed/fully_distributed_tria.h>
 #include <deal.II/grid/tria.h>
 
@@ -33,27 +35,30 @@ namespace rbc_ifem
   global_coarsening_sequence(const Triangulation<3> &fine);
 
   /**
-   * Make @p fine the fully distributed mesh that @p make builds, and return
-   * the meshes of its global-coarsening multigrid (as
+   * Make @p fine the fully distributed mesh that @p coarse and @p refine
+   * build, and return the meshes of its global-coarsening multigrid (as
    * global_coarsening_sequence(), coarsest first), fully distributed too.
    *
-   * @p make builds the serial mesh on a Triangulation<3> of its own (the
-   * capillary's or the shear box's, refined where it should be); only rank
-   * 0 calls it, so only rank 0 ever holds the whole mesh, while it
-   * partitions it with METIS and sends every rank the description of its
-   * cells and their ghost layer (deal.II's
-   * create_description_from_triangulation_in_groups()). Each coarser level
-   * is the serial mesh coarsened once more, described and sent the same
-   * way. The capillary's manifolds are attached as create_capillary_mesh()
-   * does; with @p periodic the end faces are periodic neighbours
-   * (add_end_periodicity(), which @p make must apply to the serial mesh
-   * too).
+   * Every rank builds its own part, and no rank the whole mesh: @p coarse
+   * makes the whole coarse mesh on a serial Triangulation<3> (with its
+   * boundary ids and manifolds; the capillary's or the shear box's, and with
+   * @p periodic its periodic ends, add_end_periodicity()), and @p refine
+   * refines the cells of the rank's MeshZone only: the coarse cells of its
+   * slab along x and those around it, as the whole mesh would be refined
+   * there (MeshZone::refine_global(), refine_near_points() with the zone).
+   * The rank owns the cells of its slab and takes the description of them
+   * and their ghost layer from its part (deal.II's
+   * create_description_from_triangulation() for that rank). Each coarser
+   * level is the rank's part coarsened once more, in the same slabs, so
+   * that the transfers between levels stay within a rank. The capillary's
+   * manifolds are attached as create_capillary_mesh() does.
    */
   std::vector<std::shared_ptr<const Triangulation<3>>>
   create_distributed_mesh_hierarchy(
-    parallel::fullydistributed::Triangulation<3>  &fine,
-    const std::function<void(Triangulation<3> &)> &make,
-    const bool                                     periodic);
+    parallel::fullydistributed::Triangulation<3>                    &fine,
+    const std::function<void(Triangulation<3> &)>                   &coarse,
+    const std::function<void(Triangulation<3> &, const MeshZone &)> &refine,
+    const bool                                                       periodic);
 } // namespace rbc_ifem
 
 #endif

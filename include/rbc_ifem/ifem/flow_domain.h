@@ -29,11 +29,12 @@ namespace rbc_ifem
     FlowDrive   drive;
     /// Where the cells start.
     std::vector<CellPlacement> placements;
-    /// Create the fluid mesh, before the band refinement around the cells.
+    /// Create the coarse fluid mesh (boundary ids, manifolds), which the run
+    /// refines n_global_refinements times and then around the cells.
     std::function<void(Triangulation<3> &)> create_mesh;
-    /// The cells of create_mesh()'s coarse mesh, which it refines
-    /// n_global_refinements times, and the volume they fill [µm³]: the size
-    /// estimate's start (SizeEstimate), known before any mesh is built.
+    /// The cells of create_mesh()'s coarse mesh and the volume they fill
+    /// [µm³]: the size estimate's start (SizeEstimate), known before any
+    /// mesh is built.
     unsigned int n_coarse_cells       = 0;
     unsigned int n_global_refinements = 0;
     double       volume               = 0.;

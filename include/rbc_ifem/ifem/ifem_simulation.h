@@ -212,7 +212,7 @@ namespace rbc_ifem
     TimerOutput       &timer;
     /// Made, printed and checked before anything else is built.
     const SizeEstimate size_estimate;
-    /// The fluid mesh: every rank holds its part (rank 0 builds it).
+    /// The fluid mesh: every rank builds and holds its part.
     parallel::fullydistributed::Triangulation<3> triangulation;
     FluidProblem                                 fluid;
     CellPopulation                               cells;

@@ -97,6 +97,7 @@ main(int argc, char *argv[])
 
   parallel::shared::Triangulation<3> triangulation(communicator);
   domain.create_mesh(triangulation);
+  triangulation.refine_global(domain.n_global_refinements);
   refine_near_points(triangulation,
                      cells.points(),
                      parameters.mesh.band_width,

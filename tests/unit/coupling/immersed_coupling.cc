@@ -346,7 +346,10 @@ namespace
     parallel::fullydistributed::Triangulation<3> mesh(MPI_COMM_WORLD);
     create_distributed_mesh_hierarchy(
       mesh,
-      [](Triangulation<3> &serial) { create_fluid_mesh(serial, geometry, 1); },
+      [](Triangulation<3> &serial) { create_fluid_mesh(serial, geometry, 0); },
+      [](Triangulation<3> &serial, const MeshZone &zone) {
+        zone.refine_global(serial, 1);
+      },
       false);
     const MappingQ<3> mapping(2);
     const FESystem<3> fe(FE_Q<3>(2), 3);

@@ -27,7 +27,7 @@ namespace rbc_ifem
                      const unsigned int           n_ranks,
                      const std::optional<double> &period)
   {
-    const unsigned int n_cells = coarse.n_cells(0);
+    const unsigned int                     n_cells = coarse.n_cells(0);
     std::vector<std::pair<double, double>> extents;
     std::vector<double>                    centres;
     for (const auto &cell : coarse.cell_iterators_on_level(0))
@@ -49,7 +49,7 @@ namespace rbc_ifem
 
     // The slab's x range, widened by two of the longest coarse cells.
     double longest = 0., low = 0., high = 0.;
-    bool   any     = false;
+    bool   any = false;
     for (unsigned int c = 0; c < n_cells; ++c)
       {
         longest = std::max(longest, extents[c].second - extents[c].first);
@@ -63,9 +63,9 @@ namespace rbc_ifem
     const double margin = 2. * longest + 1e-9 * (high - low + longest);
     in_zone.assign(n_cells, false);
     for (unsigned int c = 0; c < n_cells; ++c)
-      for (const double shift :
-           period ? std::vector<double>{0., -*period, *period} :
-                    std::vector<double>{0.})
+      for (const double shift : period ?
+                                  std::vector<double>{0., -*period, *period} :
+                                  std::vector<double>{0.})
         if (any && extents[c].first + shift < high + margin &&
             extents[c].second + shift > low - margin)
           in_zone[c] = true;

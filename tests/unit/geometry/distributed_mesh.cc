@@ -2,9 +2,9 @@
 
 // The fluid mesh built by all ranks (create_distributed_mesh_hierarchy(),
 // MeshZone): a periodic capillary refined once and twice more in a band
-// around a ring of points that reaches across the periodic end (40 µm long). Every rank
-// builds only its zone; together the ranks must hold the mesh built whole
-// on one rank, cell for cell: the same number of active cells, each owned
+// around a ring of points that reaches across the periodic end (40 µm long).
+// Every rank builds only its zone; together the ranks must hold the mesh built
+// whole on one rank, cell for cell: the same number of active cells, each owned
 // once (the sums of the owned cells' centres and levels over the ranks are
 // the whole mesh's), and every coarser multigrid level the whole mesh
 // coarsened as often. On 3 and 4 ranks a zone leaves coarse cells out.
@@ -81,8 +81,8 @@ namespace
   }
 
   void
-  compare(Checker               &check,
-          const std::string     &what,
+  compare(Checker                &check,
+          const std::string      &what,
           const Triangulation<3> &distributed,
           const Triangulation<3> &whole)
   {
@@ -90,7 +90,8 @@ namespace
     const std::vector<double> own        = sums(distributed);
     std::vector<double>       shared(own.size());
     Utilities::MPI::sum(own, MPI_COMM_WORLD, shared);
-    const char *names[] = {"cells", "sum of x", "sum of y", "sum of z", "sum of levels"};
+    const char *names[] = {
+      "cells", "sum of x", "sum of y", "sum of z", "sum of levels"};
     for (unsigned int i = 0; i < 5; ++i)
       check.near(what + ": " + names[i],
                  shared[i],
@@ -103,17 +104,20 @@ int
 main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  Checker check;
+  Checker                          check;
   const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
 
   parallel::fullydistributed::Triangulation<3> fine(MPI_COMM_WORLD);
-  const auto levels =
+  const auto                                   levels =
     create_distributed_mesh_hierarchy(fine, make_coarse, refine, true);
 
   Triangulation<3> whole(Triangulation<3>::limit_level_difference_at_vertices);
   make_coarse(whole);
   refine(whole, MeshZone());
-  check.near("global active cells", fine.n_global_active_cells(), whole.n_active_cells(), 0.);
+  check.near("global active cells",
+             fine.n_global_active_cells(),
+             whole.n_active_cells(),
+             0.);
   compare(check, "fine mesh", fine, whole);
   check.near("levels", levels.size() + 1, whole.n_levels(), 0.);
   for (unsigned int l = 0; l < levels.size(); ++l)
@@ -128,7 +132,7 @@ main(int argc, char **argv)
 
   Triangulation<3> coarse;
   make_coarse(coarse);
-  unsigned int in_zone = 0;
+  unsigned int   in_zone = 0;
   const MeshZone zone(coarse,
                       Utilities::MPI::this_mpi_process(MPI_COMM_WORLD),
                       n_ranks,

@@ -75,6 +75,7 @@ make_fluid_mesh(Triangulation<3>     &triangulation,
                 const Parameters     &parameters)
 {
   domain.create_mesh(triangulation);
+  triangulation.refine_global(domain.n_global_refinements);
   refine_near_points(triangulation,
                      cells.points(),
                      parameters.mesh.band_width,

@@ -95,6 +95,7 @@ namespace rbc_ifem
         points[c] = nodes.size();
       }
     const std::vector<unsigned int> lost = cell_owners.place(where, points);
+    ++n_stiffness_changes;
     if (!lost.empty())
       stiffnesses.clear();
     for (const unsigned int c : lost)
@@ -162,6 +163,7 @@ namespace rbc_ifem
     for (const auto &force : cell_forces)
       if (auto K = force->stiffness(x))
         stiffnesses.push_back(std::move(K));
+    ++n_stiffness_changes;
   }
 
   std::vector<Vector<double>>
@@ -195,8 +197,8 @@ namespace rbc_ifem
     return result;
   }
 
-  std::vector<Tensor<1, 3>>
-  CellPopulation::stiffness_product(
+  std::vector<Vector<double>>
+  CellPopulation::owned_rows_product(
     const std::vector<Tensor<1, 3>> &displacements) const
   {
     const std::vector<Vector<double>> v = per_cell(displacements);
@@ -205,6 +207,25 @@ namespace rbc_ifem
       Kv[c].reinit(v[c].size());
     for (const auto &K : stiffnesses)
       K->add_product(v, Kv);
+    return Kv;
+  }
+
+  std::vector<Vector<double>>
+  CellPopulation::owned_rows_diagonal() const
+  {
+    std::vector<Vector<double>> diagonal(size());
+    for (unsigned int c = 0; c < size(); ++c)
+      diagonal[c].reinit(x[c].size());
+    for (const auto &K : stiffnesses)
+      K->add_diagonal(diagonal);
+    return diagonal;
+  }
+
+  std::vector<Tensor<1, 3>>
+  CellPopulation::stiffness_product(
+    const std::vector<Tensor<1, 3>> &displacements) const
+  {
+    std::vector<Vector<double>> Kv = owned_rows_product(displacements);
     cell_owners.add_up(Kv, {});
     return per_point(Kv);
   }
@@ -212,13 +233,63 @@ namespace rbc_ifem
   std::vector<Tensor<1, 3>>
   CellPopulation::stiffness_diagonal() const
   {
-    std::vector<Vector<double>> diagonal(size());
-    for (unsigned int c = 0; c < size(); ++c)
-      diagonal[c].reinit(x[c].size());
-    for (const auto &K : stiffnesses)
-      K->add_diagonal(diagonal);
+    std::vector<Vector<double>> diagonal = owned_rows_diagonal();
     cell_owners.add_up(diagonal, {});
     return per_point(diagonal);
+  }
+
+  std::vector<Tensor<1, 3>>
+  CellPopulation::owned_stiffness_product(
+    const std::vector<Tensor<1, 3>> &displacements) const
+  {
+    return per_point(owned_rows_product(displacements));
+  }
+
+  std::vector<Tensor<1, 3>>
+  CellPopulation::owned_stiffness_diagonal() const
+  {
+    return per_point(owned_rows_diagonal());
+  }
+
+  std::vector<unsigned int>
+  CellPopulation::points_read() const
+  {
+    std::vector<bool> read(size());
+    for (unsigned int c = 0; c < size(); ++c)
+      read[c] = cell_owners.owns(c);
+    for (const auto &K : stiffnesses)
+      K->mark_cells_read(read);
+    std::vector<unsigned int> points;
+    unsigned int              first = 0;
+    for (unsigned int c = 0; c < size(); ++c)
+      {
+        const unsigned int n = cell_membranes[c]->nodes().size();
+        for (unsigned int i = first; read[c] && i < first + n; ++i)
+          points.push_back(i);
+        first += n;
+      }
+    return points;
+  }
+
+  std::vector<unsigned int>
+  CellPopulation::point_owners(
+    const std::vector<unsigned int> &fluid_ranks) const
+  {
+    if (!cell_owners.shared())
+      return fluid_ranks;
+    std::vector<unsigned int> owners;
+    owners.reserve(n_membrane_points);
+    for (unsigned int c = 0; c < size(); ++c)
+      owners.insert(owners.end(),
+                    cell_membranes[c]->nodes().size(),
+                    cell_owners.owner(c));
+    return owners;
+  }
+
+  unsigned int
+  CellPopulation::stiffness_serial() const
+  {
+    return n_stiffness_changes;
   }
 
   Tensor<1, 3>

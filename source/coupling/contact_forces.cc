@@ -72,6 +72,16 @@ namespace rbc_ifem
           }
       }
 
+      void
+      mark_cells_read(std::vector<bool> &cells) const override
+      {
+        for (const auto &[i, j, H] : pairs)
+          {
+            cells[i.first] = true;
+            cells[j.first] = true;
+          }
+      }
+
       std::vector<std::pair<PointDoFs, Tensor<2, 3>>>             single;
       std::vector<std::tuple<PointDoFs, PointDoFs, Tensor<2, 3>>> pairs;
 

@@ -125,17 +125,18 @@ namespace rbc_ifem
     std::vector<Point<3>> wrapped(n_membrane_points);
     for (unsigned int i = 0; i < n_membrane_points; ++i)
       wrapped[i] = wrap_into_segment(points[i], period);
-    const std::vector<unsigned int> claims = claim_points(wrapped);
+    fluid_ranks = claim_points(wrapped);
+    ++placements;
     for (unsigned int i = 0; i < n_membrane_points; ++i)
       {
-        if (claims[i] == nobody)
+        if (fluid_ranks[i] == nobody)
           throw std::runtime_error(
             "membrane point " + std::to_string(i) + " at (" +
             std::to_string(points[i][0]) + ", " + std::to_string(points[i][1]) +
             ", " + std::to_string(points[i][2]) +
             ") µm lies outside the fluid domain: a cell has left it "
             "or touched its wall.");
-        if (claims[i] != rank)
+        if (fluid_ranks[i] != rank)
           owner_cell[i] = triangulation.end();
       }
 
@@ -269,10 +270,9 @@ namespace rbc_ifem
   }
 
   std::vector<Tensor<1, 3>>
-  ImmersedCoupling::interpolate(const VelocityVector &velocity_field) const
+  ImmersedCoupling::evaluate(const VelocityVector &velocity_field) const
   {
-    // Each point is on one rank; the others add zero.
-    std::vector<double> velocity(3 * n_membrane_points, 0.);
+    std::vector<Tensor<1, 3>> velocity(n_membrane_points);
     std::vector<double> cell_values(dof_handler.get_fe().n_dofs_per_cell());
     auto                phi = shape_values.begin();
     for_each_point_cell(
@@ -281,14 +281,41 @@ namespace rbc_ifem
           cell_values[j] = velocity_field(dofs[j]);
         for (unsigned int k = first; k < last; ++k)
           for (const auto &[j, c] : velocity_shape_functions)
-            velocity[3 * points_by_cell[k] + c] += cell_values[j] * *phi++;
+            velocity[points_by_cell[k]][c] += cell_values[j] * *phi++;
       });
-    Utilities::MPI::sum(velocity, triangulation.get_communicator(), velocity);
-    std::vector<Tensor<1, 3>> result(n_membrane_points);
-    for (unsigned int i = 0; i < n_membrane_points; ++i)
-      for (unsigned int c = 0; c < 3; ++c)
-        result[i][c] = velocity[3 * i + c];
-    return result;
+    return velocity;
+  }
+
+  std::vector<Tensor<1, 3>>
+  ImmersedCoupling::interpolate(const VelocityVector &velocity_field) const
+  {
+    // Each point is on one rank; the others add zero.
+    std::vector<Tensor<1, 3>> velocity = evaluate(velocity_field);
+    if (velocity.empty())
+      return velocity;
+    Utilities::MPI::sum(
+      ArrayView<const double>(&velocity[0][0], 3 * velocity.size()),
+      triangulation.get_communicator(),
+      ArrayView<double>(&velocity[0][0], 3 * velocity.size()));
+    return velocity;
+  }
+
+  const std::vector<unsigned int> &
+  ImmersedCoupling::point_ranks() const
+  {
+    return fluid_ranks;
+  }
+
+  MPI_Comm
+  ImmersedCoupling::get_communicator() const
+  {
+    return triangulation.get_communicator();
+  }
+
+  unsigned int
+  ImmersedCoupling::n_placements() const
+  {
+    return placements;
   }
 
   unsigned int

@@ -56,9 +56,10 @@ namespace rbc_ifem
     const unsigned int                       n = levels.n_levels();
     std::vector<VelocityOperator::AddedTerm> terms(n);
     std::vector<VelocityVector>              diagonals(n);
-    // Once for all levels: for a shared membrane it is a reduction.
+    // Once for all levels, in this rank's rows: each level's L sends them
+    // to the ranks of its own mesh that hold the points.
     const std::vector<Tensor<1, 3>> stiffness_diagonal =
-      cells.stiffness_diagonal();
+      cells.owned_stiffness_diagonal();
     for (unsigned int level = 0; level < n; ++level)
       {
         const bool fine_level = level + 1 == n;

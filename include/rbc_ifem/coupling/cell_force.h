@@ -45,6 +45,15 @@ namespace rbc_ifem
     /// layout of the positions), the rows of the cells this rank owns.
     virtual void
     add_diagonal(std::vector<Vector<double>> &diagonal) const = 0;
+
+    /**
+     * Mark in @p cells (one flag per cell) the cells other than this
+     * rank's own whose displacements add_product() reads (a pair's
+     * partner across two owners). None by default.
+     */
+    virtual void
+    mark_cells_read(std::vector<bool> & /*cells*/) const
+    {}
   };
 
   /**

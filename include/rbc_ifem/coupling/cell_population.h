@@ -139,6 +139,40 @@ namespace rbc_ifem
     stiffness_diagonal() const;
 
     /**
+     * stiffness_product() in the rows of this rank's cells only (the others
+     * zero), without the sum over the ranks: it reads @p displacements at
+     * points_read() only.
+     */
+    std::vector<Tensor<1, 3>>
+    owned_stiffness_product(
+      const std::vector<Tensor<1, 3>> &displacements) const;
+
+    /// stiffness_diagonal() in the rows of this rank's cells only.
+    std::vector<Tensor<1, 3>>
+    owned_stiffness_diagonal() const;
+
+    /**
+     * The points whose displacements this rank's rows of K read, ascending:
+     * those of its own cells and of the cells its contact pairs reach; with
+     * the membranes shared (fewer cells than ranks), every point.
+     */
+    std::vector<unsigned int>
+    points_read() const;
+
+    /**
+     * Per point, the rank whose rows of K hold it: its cell's owner; with
+     * the membranes shared, where every rank holds every row, the point's
+     * @p fluid_ranks entry (so that no value travels).
+     */
+    std::vector<unsigned int>
+    point_owners(const std::vector<unsigned int> &fluid_ranks) const;
+
+    /// Changes whenever linearize() takes K or the owners are chosen anew:
+    /// what was built on points_read() and point_owners() is stale then.
+    unsigned int
+    stiffness_serial() const;
+
+    /**
      * The net external force on the cells at the last compute_forces()
      * [pN]: what holds them (CellForceReport::external_force, summed).
      */
@@ -257,6 +291,13 @@ namespace rbc_ifem
     std::vector<Tensor<1, 3>>
     per_point(const std::vector<Vector<double>> &values) const;
 
+    /// K @p displacements and K's diagonal in the rows of this rank's cells,
+    /// one Vector per cell.
+    std::vector<Vector<double>>
+    owned_rows_product(const std::vector<Tensor<1, 3>> &displacements) const;
+    std::vector<Vector<double>>
+    owned_rows_diagonal() const;
+
     const CellMembranes                    references;
     const MappingQ<2, 3>                   flat_mapping;
     std::vector<std::unique_ptr<Membrane>> cell_membranes;
@@ -270,6 +311,7 @@ namespace rbc_ifem
     std::vector<std::unique_ptr<CellForce>> cell_forces;
     /// The stiffness of each of cell_forces at the last linearize().
     std::vector<std::unique_ptr<CellForceStiffness>> stiffnesses;
+    unsigned int                                     n_stiffness_changes = 0;
     Tensor<1, 3>                                     external_force;
     double                                           total_energy = 0.;
   };

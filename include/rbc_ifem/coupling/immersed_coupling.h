@@ -37,10 +37,11 @@ namespace rbc_ifem
    * velocity space holds the constants and (Q2) the linear functions,
    * spreading keeps the total force and the total torque.
    *
-   * The membranes are small, so every rank keeps the positions, forces and
-   * velocities of all points (the same on every rank); a rank computes only
-   * with the points in its own cells, and interpolated velocities are
-   * summed over the ranks.
+   * Every rank keeps the positions, forces and velocities of all points
+   * (the same on every rank); a rank computes only with the points in its
+   * own cells. interpolate() sums the velocities over the ranks; the
+   * semi-implicit load instead sends each point's value to the ranks that
+   * need it (evaluate(), PointExchange).
    */
   class ImmersedCoupling
   {
@@ -96,6 +97,28 @@ namespace rbc_ifem
      */
     std::vector<Tensor<1, 3>>
     interpolate(const VelocityVector &velocity) const;
+
+    /**
+     * v_I = Σ_J v_J φ_J(x_I) at this rank's points, from @p velocity
+     * (ghosted), zero at the others: interpolate() without its sum over
+     * the ranks, for a PointExchange to take where it is needed.
+     */
+    std::vector<Tensor<1, 3>>
+    evaluate(const VelocityVector &velocity) const;
+
+    /// Per point, the rank whose fluid cell holds it, the same on every
+    /// rank (place()).
+    const std::vector<unsigned int> &
+    point_ranks() const;
+
+    /// The fluid mesh's communicator.
+    MPI_Comm
+    get_communicator() const;
+
+    /// How many times place() has placed the points: what was built on
+    /// point_ranks() is stale when this changes.
+    unsigned int
+    n_placements() const;
 
     unsigned int
     n_points() const;
@@ -184,6 +207,9 @@ namespace rbc_ifem
     const std::optional<double> period;
     const GridTools::Cache<3>   cache;
     unsigned int                n_membrane_points = 0;
+    unsigned int                placements        = 0;
+    /// Per point: the rank that holds it (claim_points()).
+    std::vector<unsigned int> fluid_ranks;
     /// Per point: the locally owned cell that holds it, or end().
     std::vector<CellIterator> owner_cell;
     /// Per point: its reference position in owner_cell.

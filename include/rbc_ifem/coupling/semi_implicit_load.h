@@ -3,8 +3,11 @@
 
 #include <rbc_ifem/coupling/cell_population.h>
 #include <rbc_ifem/coupling/immersed_coupling.h>
+#include <rbc_ifem/coupling/point_exchange.h>
 
 #include <deal.II/lac/affine_constraints.h>
+
+#include <memory>
 
 
 namespace rbc_ifem
@@ -22,6 +25,14 @@ namespace rbc_ifem
    * FluidProblem::set_velocity_load() takes: one interpolation, one
    * product with K (CellPopulation::linearize() at the step's start) and
    * one spreading per FGMRES iteration.
+   *
+   * On several ranks nothing of it is summed over the ranks: each rank
+   * interpolates at the points in its fluid cells, a PointExchange sends
+   * the values to the ranks whose rows of K read them, each owner
+   * multiplies its cells' rows, and the exchange sends the products back
+   * to the points' fluid ranks to be spread. The exchange is set up again
+   * whenever the points were placed or K was taken since (one some-to-some
+   * at the first product of a step).
    */
   class SemiImplicitLoad
   {
@@ -40,16 +51,25 @@ namespace rbc_ifem
 
     /// Add an estimate of L's diagonal to @p result (compressed here):
     /// Δt Sᵀ diag(K) S's, which leaves out K's entries between points;
-    /// @p stiffness_diagonal is diag(K), CellPopulation::stiffness_diagonal().
+    /// @p stiffness_diagonal is diag(K) in this rank's rows,
+    /// CellPopulation::owned_stiffness_diagonal().
     void
     add_diagonal(const std::vector<Tensor<1, 3>> &stiffness_diagonal,
                  VelocityVector                  &result) const;
 
   private:
-    const ImmersedCoupling          &coupling;
-    const CellPopulation            &cells;
-    const AffineConstraints<double> &constraints;
-    const double                    &time_step;
+    /// The exchange for the current placement and stiffness, set up anew
+    /// if either changed (collective, every rank alike).
+    const PointExchange &
+    current_exchange() const;
+
+    const ImmersedCoupling                      &coupling;
+    const CellPopulation                        &cells;
+    const AffineConstraints<double>             &constraints;
+    const double                                &time_step;
+    mutable std::shared_ptr<const PointExchange> exchange;
+    /// The placement and stiffness the exchange was set up for.
+    mutable unsigned int placement_seen = 0, stiffness_seen = 0;
   };
 } // namespace rbc_ifem
 

@@ -79,6 +79,22 @@ results_row() {
 # DIR/timing.csv (0.000 if the run has none).
 section_seconds() { awk -F, -v s="\"$2\"" '$1 == s { t += $3 } END { printf "%.3f", t }' "$1/timing.csv"; }
 
+# wall_after LOG STEP: the wall time at the end of step STEP of a run whose
+# progress lines LOG holds [s] ("[wall 12.3 s" or "[wall 1 min 05 s")
+wall_after() {
+  sed -n "s/^  step $2 of [0-9]*,.*\[wall \([^,]*\),.*/\1/p" "$1" |
+    awk '{print ($2 == "min") ? 60 * $1 + $3 : $1}'
+}
+
+# per_step LOG WHAT: the largest rank's WHAT per step ("collective MPI calls"
+# or "bytes sent") in the program's line "per rank and step, least to most
+# over P: A-B collective MPI calls, ..., E-F bytes sent" of LOG
+per_step() {
+  sed -n 's/.*per rank and step, least to most over [0-9]*: //p' "$1" |
+    tr ',' '\n' | sed -n "s/^ *[0-9.e+]*-\([0-9.e+]*\) $2.*/\1/p" |
+    awk '{printf "%.0f", $1}'
+}
+
 # The sections of a DM solve that hold the others (the level set and the
 # surface points are in setup, the sparsity in DoFs and constraints, the
 # AMG setup in assemble), without the output.

@@ -39,30 +39,15 @@ run() {
     --set "Immersed cells/Diffusion interval=0" --set "Geometry/Periodic=true" \
     "${cells[@]}" >"log_$1.txt"
 }
-# wall_after N STEP: the wall time at the end of step STEP of the run of N
-# cells [s] (its progress line: "[wall 12.3 s" or "[wall 1 min 05 s")
-wall_after() {
-  sed -n "s/^  step $2 of 3,.*\[wall \([^,]*\),.*/\1/p" "log_$1.txt" |
-    awk '{print ($2 == "min") ? 60 * $1 + $3 : $1}'
-}
-# per_step N WHAT: the largest rank's WHAT per step ("collective MPI calls"
-# or "bytes sent") in the program's line "per rank and step, least to most
-# over P: A-B collective MPI calls, ..., E-F bytes sent"
-per_step() {
-  sed -n 's/.*per rank and step, least to most over [0-9]*: //p' "log_$1.txt" |
-    tr ',' '\n' | sed -n "s/^ *[0-9.e+]*-\([0-9.e+]*\) $2.*/\1/p" |
-    awk '{printf "%.0f", $1}'
-}
-
 results_table scaling ranks cells "fluid DoFs" "step [s]" "step per cell [s]" \
   "collectives per step" "bytes sent per step" "peak memory per rank [MB]"
 for n in "${cells[@]}"; do
   run "$n"
   dofs=$(sed -n -e 's/.*fluid mesh: [0-9]* cells, \([0-9]*\) DoFs.*/\1/p' \
     -e 's/^  mesh: [0-9]* cells; \([0-9]*\) DoFs.*/\1/p' "log_${n}.txt")
-  step=$(awk -v a="$(wall_after "$n" 1)" -v b="$(wall_after "$n" 3)" 'BEGIN {printf "%.2f", (b - a) / 2}')
+  step=$(awk -v a="$(wall_after "log_$n.txt" 1)" -v b="$(wall_after "log_$n.txt" 3)" 'BEGIN {printf "%.2f", (b - a) / 2}')
   per_cell=$(awk -v s="$step" -v n="$n" 'BEGIN {if (n > 0) printf "%.3f", s / n}')
   memory=$(sed -n 's/.*peak memory: \([0-9.]*\) MB.*/\1/p' "log_${n}.txt")
   results_row "$ranks" "$n" "$dofs" "$step" "$per_cell" \
-    "$(per_step "$n" "collective MPI calls")" "$(per_step "$n" "bytes sent")" "$memory"
+    "$(per_step "log_$n.txt" "collective MPI calls")" "$(per_step "log_$n.txt" "bytes sent")" "$memory"
 done

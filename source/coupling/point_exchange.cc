@@ -23,8 +23,8 @@ namespace rbc_ifem
     : communicator(communicator)
   {
     AssertDimension(fluid_ranks.size(), owners.size());
-    const unsigned int rank = this_rank(communicator);
-    const auto to_routes    = [](const RouteMap &map) {
+    const unsigned int rank      = this_rank(communicator);
+    const auto         to_routes = [](const RouteMap &map) {
       std::vector<Route> routes;
       for (const auto &[other, points] : map)
         routes.push_back({other, points});
@@ -38,7 +38,7 @@ namespace rbc_ifem
       if (fluid_ranks[i] != rank)
         asked[fluid_ranks[i]].push_back(i);
     reader_receives = to_routes(asked);
-    reader_sends    = to_routes(Utilities::MPI::some_to_some(communicator, asked));
+    reader_sends = to_routes(Utilities::MPI::some_to_some(communicator, asked));
 
     // Back to the fluid ranks: both ends know the owners and the fluid
     // ranks of every point, so no one needs to ask.

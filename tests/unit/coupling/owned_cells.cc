@@ -1,4 +1,4 @@
-// mpirun: 2 3
+// mpirun: 2 3 4
 
 // The cells' mechanics computed by their owners (CellPopulation::share_work(),
 // CellOwners): five Evans-Fung cells at randomly perturbed positions, all
@@ -13,17 +13,30 @@
 // crossed the end and gone to other ranks: at every step every cell has one
 // owner, the owned points add up, and the forces and K v still equal those
 // computed alone. Last, squeezed into a narrower capillary by their owners,
-// the cells take the shapes squeezed on one rank, bit for bit. Runs on 2 and
-// 3 ranks (five cells share out unevenly).
+// the cells take the shapes squeezed on one rank, bit for bit. The
+// semi-implicit load L v = Δt Sᵀ K S v on a fully distributed mesh of the
+// segment, its values sent point to point between the points' fluid ranks
+// and the owners (SemiImplicitLoad, PointExchange), equals the load summed
+// over the ranks with K taken alone, and so does its diagonal. Runs on 2,
+// 3 and 4 ranks (five cells share out unevenly).
 
 #include <rbc_ifem/coupling/cell_owners.h>
 #include <rbc_ifem/coupling/cell_population.h>
 #include <rbc_ifem/coupling/contact_forces.h>
 #include <rbc_ifem/coupling/contact_gaps.h>
+#include <rbc_ifem/coupling/semi_implicit_load.h>
+#include <rbc_ifem/geometry/capillary_mesh.h>
+#include <rbc_ifem/geometry/mesh_hierarchy.h>
 
 #include "check.h"
 
+#include <deal.II/base/function_lib.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/numerics/vector_tools.h>
 
 #include <algorithm>
 #include <cmath>
@@ -132,6 +145,92 @@ namespace
     check.holds("each rank owns a part of the cells, not all",
                 Utilities::MPI::max(mine, MPI_COMM_WORLD) < n_cells);
   }
+
+  /// |a - b| / |b| of two velocity-space vectors.
+  double
+  relative_difference(const VelocityVector &a, const VelocityVector &b)
+  {
+    VelocityVector difference = a;
+    difference -= b;
+    return difference.l2_norm() / b.l2_norm();
+  }
+
+  /**
+   * L v and L's diagonal estimate of the @p owned cells (SemiImplicitLoad,
+   * point to point) against the same summed over the ranks with K of the
+   * cells @p alone, on the periodic capillary of the train (refined once,
+   * fully distributed in slabs), for a smooth v.
+   */
+  void
+  check_semi_implicit_load(Checker              &check,
+                           const CellPopulation &owned,
+                           const CellPopulation &alone)
+  {
+    GeometryParameters geometry;
+    geometry.capillary_radius = wall_radius;
+    geometry.capillary_length = period;
+    geometry.periodic         = true;
+    parallel::fullydistributed::Triangulation<3> mesh(MPI_COMM_WORLD);
+    create_distributed_mesh_hierarchy(
+      mesh,
+      [&](Triangulation<3> &serial) { create_fluid_mesh(serial, geometry, 0); },
+      [](Triangulation<3> &serial, const MeshZone &zone) {
+        zone.refine_global(serial, 1);
+      },
+      true);
+    const MappingQ<3> mapping(2);
+    const FESystem<3> fe(FE_Q<3>(2), 3);
+    DoFHandler<3>     dofs(mesh);
+    dofs.distribute_dofs(fe);
+    const IndexSet relevant = DoFTools::extract_locally_relevant_dofs(dofs);
+    const auto     vector   = [&]() {
+      return VelocityVector(dofs.locally_owned_dofs(),
+                            relevant,
+                            MPI_COMM_WORLD);
+    };
+    VelocityVector v = vector();
+    VectorTools::interpolate(mapping, dofs, Functions::CosineFunction<3>(3), v);
+    v.update_ghost_values();
+    AffineConstraints<double> none;
+    none.close();
+    ImmersedCoupling coupling(mesh, mapping, dofs, period);
+    coupling.place(owned.points());
+
+    const double              dt            = 2e-4;
+    std::vector<Tensor<1, 3>> displacements = coupling.interpolate(v);
+    for (Tensor<1, 3> &d : displacements)
+      d *= dt;
+    VelocityVector summed = vector(), exchanged = vector();
+    coupling.spread(alone.stiffness_product(displacements), none, summed);
+    const SemiImplicitLoad load(coupling, owned, none, dt);
+    load(v, exchanged);
+    check.at_most("L v, point to point against summed (relative)",
+                  relative_difference(exchanged, summed),
+                  1e-12);
+
+    std::vector<Tensor<1, 3>> diagonal = alone.stiffness_diagonal();
+    for (Tensor<1, 3> &d : diagonal)
+      d *= dt;
+    summed    = 0.;
+    exchanged = 0.;
+    coupling.spread_squares(diagonal, none, summed);
+    load.add_diagonal(owned.owned_stiffness_diagonal(), exchanged);
+    check.at_most("L's diagonal estimate, point to point against summed",
+                  relative_difference(exchanged, summed),
+                  1e-12);
+
+    // Not a vacuous check: values travel (points whose fluid rank is not
+    // their owner, contact partners read across two owners).
+    const std::vector<unsigned int> &fluid_ranks = coupling.point_ranks();
+    const PointExchange              exchange(MPI_COMM_WORLD,
+                                 fluid_ranks,
+                                 owned.point_owners(fluid_ranks),
+                                 owned.points_read());
+    check.at_least("points travelling, summed over the ranks",
+                   Utilities::MPI::sum(exchange.n_points_travelling(),
+                                       MPI_COMM_WORLD),
+                   1);
+  }
 } // namespace
 
 int
@@ -195,6 +294,8 @@ main(int argc, char *argv[])
                 relative_difference(owned.stiffness_diagonal(),
                                     alone.stiffness_diagonal()),
                 1e-12);
+
+  check_semi_implicit_load(check, owned, alone);
 
   check_owners(check, owned);
   check.holds("the ranks own runs of neighbours (cells 3 and 4 together)",

@@ -1,23 +1,43 @@
 #include <rbc_ifem/fluid/velocity_multigrid.h>
 
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
-#include <deal.II/lac/trilinos_solver.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/multigrid/mg_coarse.h>
 
 namespace rbc_ifem
 {
-  /// The coarsest level's solve: LU of the assembled operator (Amesos KLU).
+  /**
+   * The coarsest level's solve: conjugate gradients on the assembled
+   * operator, preconditioned by algebraic multigrid (Trilinos ML), to a
+   * residual of 1e-6 of the right-hand side, distributed as the level is.
+   * An LU (Amesos KLU) gathered the whole coarse matrix on rank 0 and
+   * factorised it there: rank 0 then held about 90 MB more than the
+   * other ranks in the 320 µm segment (doc/scaling.md, Section 3), a
+   * share that grows with the capillary's length on one rank alone. One
+   * V-cycle of the AMG alone instead of the solve cost a tenth more
+   * FGMRES iterations; to 1e-6 the outer iterations are the LU's.
+   */
   class VelocityMultigrid::CoarseSolver
     : public MGCoarseGridBase<VelocityVector>
   {
   public:
     CoarseSolver(const VelocityOperator          &coarse_operator,
-                 const AffineConstraints<double> &constraints)
+                 const AffineConstraints<double> &constraints,
+                 const DoFHandler<3>             &dof_handler)
     {
       coarse_operator.assemble_matrix(constraints, matrix);
-      solver.initialize(matrix);
+      TrilinosWrappers::PreconditionAMG::AdditionalData settings;
+      settings.elliptic              = true;
+      settings.higher_order_elements = true;
+      settings.smoother_sweeps       = 2;
+      DoFTools::extract_constant_modes(dof_handler,
+                                       ComponentMask(),
+                                       settings.constant_modes);
+      amg.initialize(matrix, settings);
     }
 
     void
@@ -25,13 +45,17 @@ namespace rbc_ifem
                VelocityVector       &dst,
                const VelocityVector &src) const override
     {
-      solver.solve(dst, src);
+      // A preconditioner's solve: the outer FGMRES judges convergence, so
+      // the last iterate serves if the iterations run out.
+      IterationNumberControl   control(100, 1e-6 * src.l2_norm());
+      SolverCG<VelocityVector> cg(control);
+      dst = 0.;
+      cg.solve(matrix, dst, src, amg);
     }
 
   private:
-    TrilinosWrappers::SparseMatrix         matrix;
-    SolverControl                          control;
-    mutable TrilinosWrappers::SolverDirect solver{control};
+    TrilinosWrappers::SparseMatrix    matrix;
+    TrilinosWrappers::PreconditionAMG amg;
   };
 
 
@@ -95,8 +119,9 @@ namespace rbc_ifem
   {
     for (unsigned int level = 0; level <= operators.max_level(); ++level)
       operators[level]->set_coefficients(mass_factor, viscosity);
-    coarse =
-      std::make_unique<CoarseSolver>(*operators[0], *level_constraints[0]);
+    coarse = std::make_unique<CoarseSolver>(*operators[0],
+                                            *level_constraints[0],
+                                            dof_handlers[0]);
     build_cycle(20);
   }
 

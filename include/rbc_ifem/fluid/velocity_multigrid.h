@@ -31,8 +31,9 @@ namespace rbc_ifem
    * hanging nodes where the fine mesh has them, and a locally refined band
    * costs no special treatment. On each level Q2 with the same boundary
    * conditions; Chebyshev smoothing of degree 2 around the inverse
-   * diagonal (eigenvalues estimated once per coefficient change), a direct
-   * solve (Trilinos Amesos) on the coarsest mesh.
+   * diagonal (eigenvalues estimated once per coefficient change), on the
+   * coarsest mesh conjugate gradients preconditioned by algebraic
+   * multigrid (Trilinos ML), each rank its part.
    */
   class VelocityMultigrid
   {

@@ -4,22 +4,22 @@
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
-#include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/multigrid/mg_coarse.h>
 
 namespace rbc_ifem
 {
   /**
-   * The coarsest level's solve: conjugate gradients on the assembled
-   * operator, preconditioned by algebraic multigrid (Trilinos ML), to a
-   * residual of 1e-6 of the right-hand side, distributed as the level is.
-   * An LU (Amesos KLU) gathered the whole coarse matrix on rank 0 and
-   * factorised it there: rank 0 then held about 90 MB more than the
-   * other ranks in the 320 µm segment (doc/scaling.md, Section 3), a
-   * share that grows with the capillary's length on one rank alone. One
-   * V-cycle of the AMG alone instead of the solve cost a tenth more
-   * FGMRES iterations; to 1e-6 the outer iterations are the LU's.
+   * The coarsest level's solve: one V-cycle of algebraic multigrid
+   * (Trilinos ML) on the assembled operator, each rank its part. An LU
+   * (Amesos KLU) gathered the whole coarse matrix on rank 0 and factorised
+   * it there: rank 0 then held about 90 MB more than the other ranks in
+   * the 320 µm segment (doc/scaling.md, Section 3), a share that grows with
+   * the capillary's length on one rank alone. Measured on that run (8
+   * ranks, 3 steps): 33, 32 and 29 FGMRES iterations against the LU's 26,
+   * 31 and 28; CG with this AMG to 1e-6 gave 29, 32 and 28 but tripled the
+   * collectives per step (5,345 against 1,850) with its inner products in
+   * every V-cycle; two V-cycles gave the one's iterations.
    */
   class VelocityMultigrid::CoarseSolver
     : public MGCoarseGridBase<VelocityVector>
@@ -45,12 +45,7 @@ namespace rbc_ifem
                VelocityVector       &dst,
                const VelocityVector &src) const override
     {
-      // A preconditioner's solve: the outer FGMRES judges convergence, so
-      // the last iterate serves if the iterations run out.
-      IterationNumberControl   control(100, 1e-6 * src.l2_norm());
-      SolverCG<VelocityVector> cg(control);
-      dst = 0.;
-      cg.solve(matrix, dst, src, amg);
+      amg.vmult(dst, src);
     }
 
   private:

@@ -32,8 +32,8 @@ namespace rbc_ifem
    * costs no special treatment. On each level Q2 with the same boundary
    * conditions; Chebyshev smoothing of degree 2 around the inverse
    * diagonal (eigenvalues estimated once per coefficient change), on the
-   * coarsest mesh conjugate gradients preconditioned by algebraic
-   * multigrid (Trilinos ML), each rank its part.
+   * coarsest mesh one V-cycle of algebraic multigrid (Trilinos ML), each
+   * rank its part.
    */
   class VelocityMultigrid
   {

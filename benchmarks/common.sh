@@ -13,6 +13,17 @@ benchmark_setup() {
   cd "$work"
 }
 
+# before_after_setup "$@": for a script that runs two programs side by
+# side, BEFORE AFTER [RANKS] [CELLS]: sets before and after (their paths),
+# ranks (default 2) and cells (default 64), then benchmark_setup.
+before_after_setup() {
+  [ $# -ge 2 ] || { echo "usage: $0 BEFORE AFTER [RANKS] [CELLS]" >&2; exit 2; }
+  before=$(realpath "$1")
+  after=$(realpath "$2")
+  cells=${4:-64}
+  benchmark_setup "$after" "${3:-2}"
+}
+
 # The results of every benchmark go to doc/results/benchmarks/NAME.csv
 # (doc/results/README.md): one header row, then a row per measured line,
 # each beginning with the commit the repository had checked out, the date

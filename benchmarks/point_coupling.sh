@@ -18,11 +18,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 source "$(dirname "$0")/common.sh"
-[ $# -ge 2 ] || { echo "usage: $0 BEFORE AFTER [RANKS] [CELLS]" >&2; exit 2; }
-before=$(realpath "$1")
-after=$(realpath "$2")
-benchmark_setup "$after" "${3:-2}"
-cells=${4:-64}
+before_after_setup "$@"
 
 run() {
   mpirun --oversubscribe -np "$ranks" "$2" "$here/prm/default.prm" \

@@ -25,8 +25,9 @@ namespace rbc_ifem
    * interpolation at the points is exact for them, the level's L is the
    * fine L restricted to it. The smoothers take the diagonal of A + L, L's
    * estimated by SemiImplicitLoad::add_diagonal(). The coarsest level's
-   * direct solve keeps A alone: solving A + L there saved a tenth of the
-   * outer iterations at twice the time.
+   * solve keeps A alone: solving A + L there exactly (with an LU, as the
+   * coarse solve then was) saved a tenth of the outer iterations at twice
+   * the time.
    */
   class MultilevelMembraneTerm
   {

@@ -73,7 +73,7 @@ namespace rbc_ifem
     /**
      * Add to each level's A the term of @p terms (one per level, coarsest
      * first; its diagonal in @p diagonals), and rebuild the smoothers. The
-     * coarsest level's direct solve keeps A alone.
+     * coarsest level's solve keeps A alone.
      */
     void
     set_added_terms(const std::vector<VelocityOperator::AddedTerm> &terms,

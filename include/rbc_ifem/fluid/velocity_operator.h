@@ -79,8 +79,8 @@ namespace rbc_ifem
 
     /**
      * A assembled into @p matrix, with @p constraints (the ones of its
-     * MatrixFree; their rows get a unit diagonal): for the direct solve
-     * on the coarsest level.
+     * MatrixFree; their rows get a unit diagonal): for the algebraic
+     * multigrid on the coarsest level.
      */
     void
     assemble_matrix(const AffineConstraints<double> &constraints,

@@ -15,11 +15,10 @@ namespace rbc_ifem
    * (Amesos KLU) gathered the whole coarse matrix on rank 0 and factorised
    * it there: rank 0 then held about 90 MB more than the other ranks in
    * the 320 µm segment (doc/scaling.md, Section 3), a share that grows with
-   * the capillary's length on one rank alone. Measured on that run (8
-   * ranks, 3 steps): 33, 32 and 29 FGMRES iterations against the LU's 26,
-   * 31 and 28; CG with this AMG to 1e-6 gave 29, 32 and 28 but tripled the
-   * collectives per step (5,345 against 1,850) with its inner products in
-   * every V-cycle; two V-cycles gave the one's iterations.
+   * the capillary's length on one rank alone. The V-cycle costs a few
+   * more FGMRES iterations than the LU did; CG with this AMG to 1e-6 saved
+   * some of them but tripled the collectives per step with its inner
+   * products (doc/scaling.md, Section 3, the measured counts).
    */
   class VelocityMultigrid::CoarseSolver
     : public MGCoarseGridBase<VelocityVector>

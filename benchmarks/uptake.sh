@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Usage: benchmarks/uptake.sh BEFORE AFTER [RANKS]
+# Usage: benchmarks/uptake.sh BEFORE AFTER [RANKS] [CELLS]
 #
 # One DM solve on cut cells (Q2, band refinements 1, membranes at Surface
 # refinements 4: the default mesh of the flowing runs), by two rbc-ifem
@@ -8,7 +8,10 @@
 # - one resting cell in the default 20 µm capillary (prm/default.prm's
 #   geometry, open ends);
 # - seven uniform cells in the periodic segment, the first DM instant of
-#   each seven-cell run of prm/flowing_layouts.prm.
+#   each seven-cell run of prm/flowing_layouts.prm;
+# - with CELLS, CELLS uniform cells in a periodic segment of 5 CELLS µm
+#   (benchmarks/scaling.sh's trains), where what every rank holds of the
+#   mesh shows.
 # Each solve runs three times per program and the fastest is kept. Prints
 # the TimerOutput seconds of each phase, the total of the solve (mesh,
 # setup, assembly, solve), AFTER over BEFORE, and whether the two
@@ -39,6 +42,14 @@ solve() {
   done
   best=$(for run in 1 2 3; do echo "$(uptake_seconds "$name.$run") $run"; done | sort -g | head -1 | cut -d' ' -f2)
   cp -r "$name.$best" "$name"
+  cp "$name.$best.log" "$name.log"
+}
+
+# peak_memory NAME WHICH: the peak resident memory [MB] of rank 0 (WHICH
+# = first) or of the largest other rank (others) in NAME.log's last line.
+peak_memory() {
+  sed -n 's/.*peak memory: \([0-9.]*\) MB (largest over ranks\(; rank 0 \([0-9.]*\) MB, the others [0-9.]*-\([0-9.]*\) MB\)\{0,1\}).*/\1 \3 \4/p' "$1.log" |
+    awk -v w="$2" '{ print (NF == 1 ? $1 : (w == "first" ? $2 : $3)) }'
 }
 
 cut_cells=("Diffusion/Method=cut cell" "Diffusion/Finite element degree=2" "Mesh/Diffusion band refinements=1")
@@ -57,6 +68,12 @@ compare() {
   done
   b=$(uptake_seconds before) a=$(uptake_seconds after)
   results_row "$ranks" "$label" "whole solve" "$b" "$a" "$(awk -v a="$a" -v b="$b" 'BEGIN { printf "%.2f", a / b }')"
+  for which in first others; do
+    [ "$which" = others ] && [ "$ranks" = 1 ] && continue
+    b=$(peak_memory before $which) a=$(peak_memory after $which)
+    results_row "$ranks" "$label" "peak memory, $([ $which = first ] && echo "rank 0" || echo "largest other rank") [MB]" \
+      "$b" "$a" "$(awk -v a="$a" -v b="$b" 'BEGIN { printf "%.2f", a / b }')"
+  done
   if cmp -s before/dm.csv after/dm.csv; then
     same="the same to the last digit"
   else
@@ -69,6 +86,10 @@ compare() {
 results_table uptake ranks case phase "before [s]" "after [s]" "after / before"
 compare "one cell"
 compare "seven cells, periodic" "${seven[@]}"
+if [ -n "${4:-}" ]; then
+  compare "$4 cells, periodic $((5 * $4)) µm" "Geometry/Periodic=true" "Layout/Number of cells=$4" \
+    "Geometry/Capillary length=$((5 * $4))"
+fi
 
 echo
 echo "## prm/default.prm on $ranks rank(s)"

@@ -2,61 +2,56 @@
 #include <rbc_ifem/diffusion/cut_cell_geometry.h>
 #include <rbc_ifem/diffusion/uptake_mesh.h>
 #include <rbc_ifem/geometry/capillary_mesh.h>
+#include <rbc_ifem/geometry/mesh_hierarchy.h>
 
 #include <deal.II/distributed/fully_distributed_tria.h>
 #include <deal.II/distributed/shared_tria.h>
-#include <deal.II/grid/grid_tools.h>
-#include <deal.II/grid/tria_description.h>
+
+#include <optional>
 
 namespace rbc_ifem
 {
   namespace
   {
-    /// Refine the cells @p cells of @p mesh and their face neighbours.
-    void
-    refine_cells_and_neighbors(Triangulation<3>          &mesh,
-                               const std::vector<CellId> &cells)
+    /**
+     * The cell @p id of @p mesh, if its coarse cell lies in @p zone and the
+     * mesh is refined that far there: beyond a rank's slab and its ghost
+     * layer, its zone's mesh need not hold every cell of the whole mesh.
+     */
+    std::optional<Triangulation<3>::cell_iterator>
+    find_cell(const Triangulation<3> &mesh,
+              const CellId           &id,
+              const MeshZone         &zone)
     {
-      for (const CellId &id : cells)
+      Triangulation<3>::cell_iterator cell(&mesh, 0, id.get_coarse_cell_id());
+      if (!zone.contains(cell))
+        return std::nullopt;
+      for (const std::uint8_t child : id.get_child_indices())
         {
-          const auto cell = mesh.create_cell_iterator(id);
-          cell->set_refine_flag();
-          for (const unsigned int f : cell->face_indices())
-            if (!cell->at_boundary(f) && cell->neighbor(f)->is_active())
-              cell->neighbor(f)->set_refine_flag();
+          if (!cell->has_children())
+            return std::nullopt;
+          cell = cell->child(child);
         }
-      mesh.execute_coarsening_and_refinement();
+      return cell;
     }
 
-    /**
-     * For @p overlap[a][b], the cells that new part a shares with old part
-     * b: the old number of each new part, chosen greedily, the largest
-     * overlap first (the best numbering on two parts).
-     */
-    std::vector<types::subdomain_id>
-    numbering_that_keeps(const std::vector<std::vector<unsigned int>> &overlap)
+    /// Refine those of the cells @p cells of @p mesh that @p zone holds
+    /// (find_cell()), and their face neighbours.
+    void
+    refine_cells_and_neighbors(Triangulation<3>          &mesh,
+                               const std::vector<CellId> &cells,
+                               const MeshZone            &zone)
     {
-      const unsigned int               n_parts = overlap.size();
-      std::vector<types::subdomain_id> number(n_parts,
-                                              numbers::invalid_subdomain_id);
-      std::vector<bool>                taken(n_parts, false);
-      for (unsigned int k = 0; k < n_parts; ++k)
-        {
-          unsigned int best_new = 0, best_old = 0;
-          bool         found = false;
-          for (unsigned int a = 0; a < n_parts; ++a)
-            for (unsigned int b = 0; b < n_parts; ++b)
-              if (number[a] == numbers::invalid_subdomain_id && !taken[b] &&
-                  (!found || overlap[a][b] > overlap[best_new][best_old]))
-                {
-                  best_new = a;
-                  best_old = b;
-                  found    = true;
-                }
-          number[best_new] = best_old;
-          taken[best_old]  = true;
-        }
-      return number;
+      for (const CellId &id : cells)
+        if (const auto cell = find_cell(mesh, id, zone);
+            cell && (*cell)->is_active())
+          {
+            (*cell)->set_refine_flag();
+            for (const unsigned int f : (*cell)->face_indices())
+              if (!(*cell)->at_boundary(f) && (*cell)->neighbor(f)->is_active())
+                (*cell)->neighbor(f)->set_refine_flag();
+          }
+      mesh.execute_coarsening_and_refinement();
     }
   } // namespace
 
@@ -80,7 +75,6 @@ namespace rbc_ifem
   {
     band_points = points_in_segment(surfaces.vertices(), geometry.period());
     refinements.clear();
-    partition.clear();
     make();
     bool refine_ridges = true;
     for (;;)
@@ -121,26 +115,31 @@ namespace rbc_ifem
   }
 
   void
-  UptakeMesh::make_serial(Triangulation<3> &serial) const
+  UptakeMesh::make_coarse(Triangulation<3> &coarse) const
   {
-    create_diffusion_mesh(serial,
-                          geometry,
-                          mesh_parameters.diffusion_global_refinements);
-    const auto match_ends = [this, &serial]() {
-      if (geometry.period())
-        match_end_refinement(serial);
-    };
+    create_diffusion_mesh(coarse, geometry, 0);
     if (geometry.period())
-      add_end_periodicity(serial);
-    refine_near_points(serial,
+      add_end_periodicity(coarse);
+  }
+
+  void
+  UptakeMesh::refine(Triangulation<3> &mesh, const MeshZone &zone) const
+  {
+    zone.refine_global(mesh, mesh_parameters.diffusion_global_refinements);
+    const auto match_ends = [this, &mesh]() {
+      if (geometry.period())
+        match_end_refinement(mesh);
+    };
+    refine_near_points(mesh,
                        band_points,
                        mesh_parameters.band_width,
-                       mesh_parameters.diffusion_band_refinements);
+                       mesh_parameters.diffusion_band_refinements,
+                       zone);
     // After each step, as the mesh was whose cells the next step names.
     match_ends();
     for (const std::vector<CellId> &cells : refinements)
       {
-        refine_cells_and_neighbors(serial, cells);
+        refine_cells_and_neighbors(mesh, cells, zone);
         match_ends();
       }
   }
@@ -157,62 +156,34 @@ namespace rbc_ifem
           Triangulation<3>::none,
           false,
           parallel::shared::Triangulation<3>::partition_metis);
-        make_serial(*shared);
+        make_coarse(*shared);
+        refine(*shared, MeshZone());
         mesh = std::move(shared);
         return;
       }
-    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
-    // Hanging nodes need the description's levels, which limit the level
-    // difference at vertices to one.
-    const auto description = TriangulationDescription::Utilities::
-      create_description_from_triangulation_in_groups<3, 3>(
-        [this](Triangulation<3> &serial) { make_serial(serial); },
-        [this, n_ranks](Triangulation<3> &serial,
-                        const MPI_Comm &,
-                        const unsigned int) {
-          partition_like(serial, n_ranks);
-        },
-        communicator,
-        n_ranks,
-        Triangulation<3>::none,
-        TriangulationDescription::Settings::construct_multigrid_hierarchy);
+    const auto coarse = [this](Triangulation<3> &coarse) {
+      make_coarse(coarse);
+    };
+    const auto refine_zone = [this](Triangulation<3> &serial,
+                                    const MeshZone   &zone) {
+      refine(serial, zone);
+    };
+    const bool periodic = geometry.period().has_value();
+    // Counted again on every attempt: the cells an attempt refines can be
+    // many, all near one membrane (a folded rim), and in one slab.
+    const std::vector<double> weights =
+      Utilities::MPI::n_mpi_processes(communicator) > 1 ?
+        fine_cells_per_coarse_cell(communicator,
+                                   coarse,
+                                   refine_zone,
+                                   periodic) :
+        std::vector<double>();
     auto distributed =
       std::make_unique<parallel::fullydistributed::Triangulation<3>>(
         communicator);
-    create_capillary_mesh(*distributed, description);
-    if (geometry.period())
-      add_end_periodicity(*distributed);
+    create_distributed_mesh(
+      *distributed, coarse, refine_zone, periodic, weights);
     mesh = std::move(distributed);
-  }
-
-  void
-  UptakeMesh::partition_like(Triangulation<3>  &serial,
-                             const unsigned int n_parts)
-  {
-    GridTools::partition_triangulation(n_parts, serial);
-    if (!partition.empty())
-      {
-        // overlap[new part][old part]: cells, counted on the finer mesh.
-        std::vector<std::vector<unsigned int>> overlap(
-          n_parts, std::vector<unsigned int>(n_parts, 0));
-        for (const auto &cell : serial.active_cell_iterators())
-          {
-            Triangulation<3>::cell_iterator ancestor = cell;
-            while (partition.count(ancestor->id()) == 0 &&
-                   ancestor->level() > 0)
-              ancestor = ancestor->parent();
-            if (const auto old = partition.find(ancestor->id());
-                old != partition.end())
-              ++overlap[cell->subdomain_id()][old->second];
-          }
-        const std::vector<types::subdomain_id> number =
-          numbering_that_keeps(overlap);
-        for (const auto &cell : serial.active_cell_iterators())
-          cell->set_subdomain_id(number[cell->subdomain_id()]);
-      }
-    partition.clear();
-    for (const auto &cell : serial.active_cell_iterators())
-      partition.emplace(cell->id(), cell->subdomain_id());
   }
 
   types::global_vertex_index

@@ -2,6 +2,7 @@
 #include <rbc_ifem/geometry/mesh_hierarchy.h>
 #include <rbc_ifem/geometry/mesh_zone.h>
 
+#include <deal.II/base/mpi.h>
 #include <deal.II/distributed/shared_tria.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/manifold_lib.h>
@@ -9,6 +10,7 @@
 
 #include <algorithm>
 #include <optional>
+#include <utility>
 
 namespace rbc_ifem
 {
@@ -98,7 +100,8 @@ namespace rbc_ifem
     /**
      * Build @p mesh on every rank from the rank's own part of the serial
      * mesh: @p coarse the whole coarse mesh, @p refine its zone's cells
-     * (MeshZone), coarsened @p n_coarsenings times for a multigrid level.
+     * (MeshZone, its slabs balanced by @p weights if given), coarsened
+     * @p n_coarsenings times for a multigrid level.
      */
     void
     distribute(
@@ -106,7 +109,8 @@ namespace rbc_ifem
       const std::function<void(Triangulation<3> &)>                   &coarse,
       const std::function<void(Triangulation<3> &, const MeshZone &)> &refine,
       const bool                                                       periodic,
-      const unsigned int n_coarsenings)
+      const unsigned int         n_coarsenings,
+      const std::vector<double> &weights = {})
     {
       const MPI_Comm     communicator = mesh.get_communicator();
       const unsigned int rank = Utilities::MPI::this_mpi_process(communicator);
@@ -119,7 +123,8 @@ namespace rbc_ifem
                           rank,
                           Utilities::MPI::n_mpi_processes(communicator),
                           periodic ? std::optional<double>(x_length(serial)) :
-                                     std::nullopt);
+                                     std::nullopt,
+                          weights);
       refine(serial, zone);
       serial.coarsen_global(n_coarsenings);
       zone.mark_owners(serial);
@@ -133,6 +138,7 @@ namespace rbc_ifem
       if (periodic)
         add_end_periodicity(mesh);
     }
+
   } // namespace
 
   std::vector<std::shared_ptr<const Triangulation<3>>>
@@ -154,5 +160,48 @@ namespace rbc_ifem
         levels.push_back(level);
       }
     return levels;
+  }
+
+  void
+  create_distributed_mesh(
+    parallel::fullydistributed::Triangulation<3>                    &mesh,
+    const std::function<void(Triangulation<3> &)>                   &coarse,
+    const std::function<void(Triangulation<3> &, const MeshZone &)> &refine,
+    const bool                                                       periodic,
+    const std::vector<double>                                       &weights)
+  {
+    distribute(mesh, coarse, refine, periodic, 0, weights);
+  }
+
+  std::vector<double>
+  fine_cells_per_coarse_cell(
+    const MPI_Comm                                 communicator,
+    const std::function<void(Triangulation<3> &)> &coarse,
+    const std::function<void(Triangulation<3> &, const MeshZone &)> &refine,
+    const bool                                                       periodic)
+  {
+    const unsigned int rank = Utilities::MPI::this_mpi_process(communicator);
+    Triangulation<3>   serial(
+      Triangulation<3>::limit_level_difference_at_vertices);
+    coarse(serial);
+    // The slab alone: the counts weigh the slabs, and need not be exact
+    // next to their ends.
+    const MeshZone slab =
+      MeshZone(serial,
+               rank,
+               Utilities::MPI::n_mpi_processes(communicator),
+               periodic ? std::optional<double>(x_length(serial)) :
+                          std::nullopt)
+        .slab_only();
+    refine(serial, slab);
+    std::vector<double> counts(serial.n_cells(0), 0.);
+    for (const auto &cell : serial.active_cell_iterators())
+      if (slab.owner(cell) == rank)
+        counts[cell->id().get_coarse_cell_id()] += 1.;
+    std::vector<double> sums(counts.size());
+    Utilities::MPI::sum(make_array_view(std::as_const(counts)),
+                        communicator,
+                        make_array_view(sums));
+    return sums;
   }
 } // namespace rbc_ifem

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <set>
 
 namespace rbc_ifem
 {
@@ -20,12 +21,44 @@ namespace rbc_ifem
         }
       return {low, high};
     }
+
+    /**
+     * Per coarse cell, its slab: the cells in @p order (along x) cut into
+     * @p n_ranks runs of about equal weight, each cell in the run where its
+     * preceding weight falls (unit weights if @p weights is empty).
+     */
+    std::vector<unsigned int>
+    slabs(const std::vector<unsigned int> &order,
+          const unsigned int               n_ranks,
+          const std::vector<double>       &weights)
+    {
+      const auto weight = [&weights](const unsigned int c) {
+        return weights.empty() ? 1. : weights[c];
+      };
+      double total = 0.;
+      for (const unsigned int c : order)
+        total += weight(c);
+      std::vector<unsigned int> slab_of(order.size());
+      double                    before = 0.;
+      for (const unsigned int c : order)
+        {
+          // Integer weights are summed and divided exactly: with unit
+          // weights, position k goes to slab k P / C, rounded down.
+          slab_of[c] = std::min(n_ranks - 1,
+                                static_cast<unsigned int>(
+                                  std::floor(before * n_ranks / total)));
+          before += weight(c);
+        }
+      return slab_of;
+    }
   } // namespace
 
   MeshZone::MeshZone(const Triangulation<3>      &coarse,
                      const unsigned int           rank,
                      const unsigned int           n_ranks,
-                     const std::optional<double> &period)
+                     const std::optional<double> &period,
+                     const std::vector<double>   &weights)
+    : rank(rank)
   {
     const unsigned int                     n_cells = coarse.n_cells(0);
     std::vector<std::pair<double, double>> extents;
@@ -42,10 +75,11 @@ namespace rbc_ifem
                      [&](const unsigned int a, const unsigned int b) {
                        return centres[a] < centres[b];
                      });
-    slab_of.resize(n_cells);
-    for (unsigned int k = 0; k < n_cells; ++k)
-      slab_of[order[k]] = static_cast<unsigned int>(
-        static_cast<unsigned long long>(k) * n_ranks / n_cells);
+    slab_of = slabs(order, n_ranks, weights);
+    if (std::set<unsigned int>(slab_of.begin(), slab_of.end()).size() <
+        std::min<std::size_t>(n_ranks, n_cells))
+      // A coarse cell heavier than a rank's share left a rank without one.
+      slab_of = slabs(order, n_ranks, {});
 
     // The slab's x range, widened by two of the longest coarse cells.
     double longest = 0., low = 0., high = 0.;
@@ -99,6 +133,15 @@ namespace rbc_ifem
             cell->set_refine_flag();
         mesh.execute_coarsening_and_refinement();
       }
+  }
+
+  MeshZone
+  MeshZone::slab_only() const
+  {
+    MeshZone slab = *this;
+    for (unsigned int c = 0; c < slab_of.size(); ++c)
+      slab.in_zone[c] = (slab_of[c] == rank);
+    return slab;
   }
 
   void

@@ -3,6 +3,7 @@
 
 #include <rbc_ifem/diffusion/parameters.h>
 #include <rbc_ifem/geometry/membrane_surfaces.h>
+#include <rbc_ifem/geometry/mesh_zone.h>
 #include <rbc_ifem/geometry/parameters.h>
 
 #include <deal.II/base/timer.h>
@@ -10,7 +11,6 @@
 #include <deal.II/grid/cell_id.h>
 
 #include <functional>
-#include <map>
 #include <memory>
 #include <vector>
 
@@ -25,13 +25,19 @@ namespace rbc_ifem
    * membranes' vertices, then where the cut cells' level set cannot resolve
    * the membranes (UnresolvedCutCells), each time built again.
    *
-   * For cut cells the mesh is fully distributed: rank 0 builds the serial
-   * mesh and sends each rank its cells and their ghost layer, partitioned by
-   * METIS; a mesh built again keeps on each rank most of the cells it had
-   * (partition_like()), so that the closest points a rank found on the last
-   * attempt answer most of its questions on the next (MembraneDistance
-   * remembers them). For the multiplier the mesh is shared: every rank
-   * locates every membrane point in it.
+   * For cut cells the mesh is fully distributed and built by all ranks, as
+   * the fluid mesh is (create_distributed_mesh()): every rank makes the
+   * coarse mesh and refines only its zone (MeshZone: its slab of coarse
+   * cells along x and two coarse cells around it), and owns the cells of
+   * its slab. The slabs hold about equal numbers of cells: on every
+   * attempt the ranks count them first (fine_cells_per_coarse_cell()). A
+   * mesh built again moves the slabs' ends only as far as the new
+   * refinement shifts the weights, so that a rank holds mostly the same
+   * part of the capillary on every attempt, and the closest points it
+   * found on the last answer most of its questions on the next
+   * (MembraneDistance remembers them). For the multiplier the mesh is
+   * shared: every rank builds it whole and locates every membrane point in
+   * it.
    */
   class UptakeMesh
   {
@@ -65,24 +71,21 @@ namespace rbc_ifem
     n_global_vertices() const;
 
   private:
-    /// The subdomain of each active cell of a serial mesh.
-    using Partition = std::map<CellId, types::subdomain_id>;
-
-    /// The mesh around the membranes of the current build(), refined
-    /// where each entry of @p refinements lists cells, in turn.
+    /// The capillary's coarse diffusion mesh, with its periodic ends.
     void
-    make_serial(Triangulation<3> &mesh) const;
+    make_coarse(Triangulation<3> &coarse) const;
+    /**
+     * Refine the part @p zone of @p mesh for the current build(): globally,
+     * in the band around the membranes, then where each entry of
+     * refinements lists cells, in turn (the ends of a periodic segment
+     * kept alike after each step).
+     */
+    void
+    refine(Triangulation<3> &mesh, const MeshZone &zone) const;
     /// Build the mesh of the recipe anew (a parallel one of the method's
     /// kind).
     void
     make();
-    /**
-     * Partition @p serial into @p n_parts by METIS, numbering the parts so
-     * that each keeps as many cells of the last partition as it can; then
-     * remember the new one.
-     */
-    void
-    partition_like(Triangulation<3> &serial, const unsigned int n_parts);
 
     const GeometryParameters                        geometry;
     const MeshParameters                            mesh_parameters;
@@ -91,7 +94,6 @@ namespace rbc_ifem
     TimerOutput                                    &timer;
     std::vector<Point<3>>                           band_points;
     std::vector<std::vector<CellId>>                refinements;
-    Partition                                       partition;
     std::unique_ptr<parallel::TriangulationBase<3>> mesh;
   };
 } // namespace rbc_ifem

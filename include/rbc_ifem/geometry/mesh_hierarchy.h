@@ -59,6 +59,43 @@ namespace rbc_ifem
     const std::function<void(Triangulation<3> &)>                   &coarse,
     const std::function<void(Triangulation<3> &, const MeshZone &)> &refine,
     const bool                                                       periodic);
+
+  /**
+   * Make @p mesh the fully distributed mesh that @p coarse and @p refine
+   * build, every rank its own part, as create_distributed_mesh_hierarchy()
+   * builds its finest mesh (and with its multigrid hierarchy of levels, for
+   * solvers that coarsen on the mesh's own levels), without the coarser
+   * meshes. With @p weights, one per coarse cell (such as
+   * fine_cells_per_coarse_cell()), the slabs hold about equal weights
+   * instead of equal numbers of coarse cells (MeshZone).
+   */
+  void
+  create_distributed_mesh(
+    parallel::fullydistributed::Triangulation<3>                    &mesh,
+    const std::function<void(Triangulation<3> &)>                   &coarse,
+    const std::function<void(Triangulation<3> &, const MeshZone &)> &refine,
+    const bool                                                       periodic,
+    const std::vector<double> &weights = {});
+
+  /**
+   * Per coarse cell of the mesh that @p coarse and @p refine build, the
+   * number of active cells it is refined into, the same on every rank of
+   * @p communicator: the weights that balance create_distributed_mesh()'s
+   * slabs, so that a mesh refined around a few red cells in one part of
+   * the capillary is shared evenly. Each rank refines only its slab of
+   * equal numbers of coarse cells (MeshZone::slab_only(): about half of
+   * what it builds for its part of the mesh) and counts its cells there;
+   * one sum over the ranks of as many numbers as coarse cells. Next to a
+   * slab's ends the count can differ from the whole mesh's, by what the
+   * refinement's smoothing would have brought from across: a weight, not
+   * a mesh.
+   */
+  std::vector<double>
+  fine_cells_per_coarse_cell(
+    const MPI_Comm                                 communicator,
+    const std::function<void(Triangulation<3> &)> &coarse,
+    const std::function<void(Triangulation<3> &, const MeshZone &)> &refine,
+    const bool                                                       periodic);
 } // namespace rbc_ifem
 
 #endif

@@ -35,12 +35,16 @@ namespace rbc_ifem
     /**
      * Rank @p rank's zone of @p n_ranks in the coarse mesh @p coarse (not
      * yet refined); with a @p period along x, the slabs at the two ends are
-     * neighbours.
+     * neighbours. With @p weights (one per coarse cell, such as the number
+     * of cells it is refined into), the slabs are runs of about equal
+     * weight instead of equal numbers of coarse cells, unless a cell
+     * heavier than a rank's share would leave a rank without one.
      */
     MeshZone(const Triangulation<3>      &coarse,
              const unsigned int           rank,
              const unsigned int           n_ranks,
-             const std::optional<double> &period);
+             const std::optional<double> &period,
+             const std::vector<double>   &weights = {});
 
     /// Whether @p cell (of any level) lies in the zone: its coarse cell does.
     bool
@@ -55,6 +59,10 @@ namespace rbc_ifem
     void
     refine_global(Triangulation<3> &mesh, const unsigned int times) const;
 
+    /// The same slabs, with a zone of the rank's slab alone (no coarse
+    /// cells around it).
+    MeshZone
+    slab_only() const;
     /// Set every cell's subdomain and level subdomain id to its owner(),
     /// the partition a rank's description is taken from.
     void
@@ -64,6 +72,7 @@ namespace rbc_ifem
     /// Per coarse cell: the owner rank, and whether it is in the zone;
     /// empty for the whole mesh.
     std::vector<unsigned int> slab_of;
+    unsigned int              rank = 0;
     std::vector<bool>         in_zone;
   };
 } // namespace rbc_ifem

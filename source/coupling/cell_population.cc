@@ -24,10 +24,14 @@ namespace rbc_ifem
                  cells.surface_refinements)
     , flat_mapping(1)
   {
+    // Every cell is the one reference shape placed elsewhere: they share
+    // the first cell's numbering and stiffness pattern.
     for (const Triangulation<2, 3> *surface : references.surfaces())
       {
-        cell_membranes.push_back(
-          std::make_unique<Membrane>(*surface, membrane));
+        cell_membranes.push_back(std::make_unique<Membrane>(
+          *surface,
+          membrane,
+          cell_membranes.empty() ? nullptr : cell_membranes.front().get()));
         x.push_back(cell_membranes.back()->reference_positions());
         forces.emplace_back(x.back().size());
         n_membrane_points += cell_membranes.back()->nodes().size();

@@ -32,7 +32,8 @@ namespace rbc_ifem
   };
 
   Membrane::Membrane(const Triangulation<2, 3> &reference_mesh,
-                     const MembraneParameters  &parameters)
+                     const MembraneParameters  &parameters,
+                     const Membrane            *like)
     : parameters(parameters)
     , elastic_law(make_elastic_law(parameters.law,
                                    parameters.shear_modulus,
@@ -44,8 +45,7 @@ namespace rbc_ifem
   {
     dof_handler.distribute_dofs(fe);
     tabulate_shape_functions();
-    number_nodes();
-    find_cells_around_nodes();
+    number_nodes(like);
     interpolate_reference_surface();
     measure_reference_surface();
   }
@@ -75,35 +75,57 @@ namespace rbc_ifem
   }
 
   void
-  Membrane::number_nodes()
+  Membrane::number_nodes(const Membrane *like)
   {
+    if (like && like->dof_handler.n_dofs() == dof_handler.n_dofs() &&
+        like->numbering->cell_dofs.size() ==
+          dof_handler.get_triangulation().n_active_cells())
+      {
+        std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+        bool                                 same = true;
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          {
+            cell->get_dof_indices(dofs);
+            same =
+              same &&
+              (dofs == like->numbering->cell_dofs[cell->active_cell_index()]);
+          }
+        if (same)
+          {
+            numbering = like->numbering;
+            return;
+          }
+      }
+    numbering = std::make_shared<Numbering>();
     // Nodes: numbered by the DoF of their x component.
     const unsigned int n_a = scalar_fe.n_dofs_per_cell();
     std::vector<int>   node_of_dof(dof_handler.n_dofs(), -1);
-    component_of_dof.resize(dof_handler.n_dofs());
+    numbering->component_of_dof.resize(dof_handler.n_dofs());
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
         std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
         cell->get_dof_indices(dofs);
         std::vector<unsigned int> nodes(n_a);
         for (unsigned int k = 0; k < dofs.size(); ++k)
-          component_of_dof[dofs[k]] = fe.system_to_component_index(k).first;
+          numbering->component_of_dof[dofs[k]] =
+            fe.system_to_component_index(k).first;
         for (unsigned int a = 0; a < n_a; ++a)
           {
             const auto first = dofs[fe.component_to_system_index(0, a)];
             if (node_of_dof[first] < 0)
               {
-                node_of_dof[first] = n_nodes++;
-                node_dofs.push_back(
+                node_of_dof[first] = numbering->n_nodes++;
+                numbering->node_dofs.push_back(
                   {{first,
                     dofs[fe.component_to_system_index(1, a)],
                     dofs[fe.component_to_system_index(2, a)]}});
               }
             nodes[a] = node_of_dof[first];
           }
-        cell_dofs.push_back(dofs);
-        cell_nodes.push_back(nodes);
+        numbering->cell_dofs.push_back(dofs);
+        numbering->cell_nodes.push_back(nodes);
       }
+    find_cells_around_nodes();
   }
 
   void
@@ -124,7 +146,7 @@ namespace rbc_ifem
     if (!metric.jacobian.empty())
       return metric;
     const unsigned int n_q = quadrature.size();
-    for (unsigned int c = 0; c < cell_dofs.size(); ++c)
+    for (unsigned int c = 0; c < numbering->cell_dofs.size(); ++c)
       {
         const std::vector<double> X = local_positions(c, reference);
         metric.inverse.emplace_back(n_q);
@@ -154,7 +176,7 @@ namespace rbc_ifem
   {
     const std::vector<std::vector<double>> &jacobian =
       reference_metric().jacobian;
-    for (unsigned int c = 0; c < cell_dofs.size(); ++c)
+    for (unsigned int c = 0; c < numbering->cell_dofs.size(); ++c)
       {
         reference_cell_areas.push_back(0.);
         for (unsigned int q = 0; q < quadrature.size(); ++q)
@@ -169,7 +191,6 @@ namespace rbc_ifem
   Membrane::forget_owner_data()
   {
     metric = ReferenceMetric();
-    stiffness_sparsity.reinit(0, 0, 0);
   }
 
   const DoFHandler<2, 3> &
@@ -187,22 +208,22 @@ namespace rbc_ifem
   const std::vector<std::array<types::global_dof_index, 3>> &
   Membrane::nodes() const
   {
-    return node_dofs;
+    return numbering->node_dofs;
   }
 
   unsigned int
   Membrane::component(const types::global_dof_index dof) const
   {
-    return component_of_dof[dof];
+    return numbering->component_of_dof[dof];
   }
 
   std::vector<double>
   Membrane::local_positions(const unsigned int    cell,
                             const Vector<double> &x) const
   {
-    std::vector<double> local(cell_dofs[cell].size());
+    std::vector<double> local(numbering->cell_dofs[cell].size());
     for (unsigned int k = 0; k < local.size(); ++k)
-      local[k] = x[cell_dofs[cell][k]];
+      local[k] = x[numbering->cell_dofs[cell][k]];
     return local;
   }
 
@@ -261,9 +282,9 @@ namespace rbc_ifem
     const std::pair<unsigned int, unsigned int> cells) const
   {
     Sums sums;
-    sums.laplacian.resize(n_nodes);
-    sums.normal.resize(n_nodes);
-    sums.mass.resize(n_nodes);
+    sums.laplacian.resize(numbering->n_nodes);
+    sums.normal.resize(numbering->n_nodes);
+    sums.mass.resize(numbering->n_nodes);
     // The law is chosen once per call, outside the loop over the cells.
     std::visit(
       [&](const auto &law) {
@@ -277,19 +298,19 @@ namespace rbc_ifem
   Membrane::Sums
   Membrane::sum_cell_terms(const Vector<double> &x) const
   {
-    return sum_cell_terms(x, {0, cell_dofs.size()});
+    return sum_cell_terms(x, {0, numbering->cell_dofs.size()});
   }
 
   Membrane::Sums
   Membrane::sum_shared_cell_terms(const Vector<double> &x) const
   {
-    Sums sums = sum_cell_terms(x, share(cell_dofs.size()));
+    Sums sums = sum_cell_terms(x, share(numbering->cell_dofs.size()));
     if (n_ranks(communicator) == 1)
       return sums;
     // One reduction for all sums, packed in one array.
     std::vector<double> packed{sums.in_plane, sums.area, sums.volume};
-    packed.reserve(3 + 7 * n_nodes);
-    for (unsigned int i = 0; i < n_nodes; ++i)
+    packed.reserve(3 + 7 * numbering->n_nodes);
+    for (unsigned int i = 0; i < numbering->n_nodes; ++i)
       {
         for (unsigned int e = 0; e < 3; ++e)
           packed.insert(packed.end(),
@@ -301,7 +322,7 @@ namespace rbc_ifem
     sums.in_plane = *value++;
     sums.area     = *value++;
     sums.volume   = *value++;
-    for (unsigned int i = 0; i < n_nodes; ++i)
+    for (unsigned int i = 0; i < numbering->n_nodes; ++i)
       {
         for (unsigned int e = 0; e < 3; ++e)
           {
@@ -336,9 +357,9 @@ namespace rbc_ifem
     sums.in_plane += terms.in_plane;
     sums.area += terms.area;
     sums.volume += terms.volume;
-    for (unsigned int a = 0; a < cell_nodes[c].size(); ++a)
+    for (unsigned int a = 0; a < numbering->cell_nodes[c].size(); ++a)
       {
-        const unsigned int i = cell_nodes[c][a];
+        const unsigned int i = numbering->cell_nodes[c][a];
         sums.laplacian[i] += terms.laplacian[a];
         sums.normal[i] += terms.normal[a];
         sums.mass[i] += terms.mass[a];
@@ -377,10 +398,10 @@ namespace rbc_ifem
 
     // The bending energy κ/2 Σ m_i |u_i|², u_i = y_i/m_i - c0 ν_i, and its
     // derivatives by the nodal sums y_i, m_i and w_i = ∫ N_i n dA.
-    d.laplacian.resize(n_nodes);
-    d.normal.resize(n_nodes);
-    d.mass.resize(n_nodes);
-    for (unsigned int i = 0; i < n_nodes; ++i)
+    d.laplacian.resize(numbering->n_nodes);
+    d.normal.resize(numbering->n_nodes);
+    d.mass.resize(numbering->n_nodes);
+    for (unsigned int i = 0; i < numbering->n_nodes; ++i)
       {
         const double       m  = sums.mass[i];
         const double       w  = sums.normal[i].norm();
@@ -413,11 +434,11 @@ namespace rbc_ifem
       using ADNumber = Sacado::Fad::SFad<double, 9>;
       Vector<double> values(fe.n_dofs_per_cell()), z(9), dphi_dz(9),
         gradient(fe.n_dofs_per_cell());
-      const auto [begin, end] = share(cell_dofs.size());
+      const auto [begin, end] = share(numbering->cell_dofs.size());
       for (unsigned int c = begin; c < end; ++c)
         {
-          x.extract_subvector_to(cell_dofs[c].begin(),
-                                 cell_dofs[c].end(),
+          x.extract_subvector_to(numbering->cell_dofs[c].begin(),
+                                 numbering->cell_dofs[c].end(),
                                  values.begin());
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
@@ -431,7 +452,7 @@ namespace rbc_ifem
                 dphi_dz[j] = phi.dx(j);
               point_maps[q].Tvmult(gradient, dphi_dz);
               for (unsigned int k = 0; k < gradient.size(); ++k)
-                forces[cell_dofs[c][k]] -= gradient[k];
+                forces[numbering->cell_dofs[c][k]] -= gradient[k];
             }
         }
     };
@@ -448,9 +469,9 @@ namespace rbc_ifem
                            const Multipliers       &d) const
   {
     Number phi = terms.in_plane + d.area * terms.area + d.volume * terms.volume;
-    for (unsigned int a = 0; a < cell_nodes[c].size(); ++a)
+    for (unsigned int a = 0; a < numbering->cell_nodes[c].size(); ++a)
       {
-        const unsigned int i = cell_nodes[c][a];
+        const unsigned int i = numbering->cell_nodes[c][a];
         phi += d.laplacian[i] * terms.laplacian[a] + d.mass[i] * terms.mass[a] +
                d.normal[i] * terms.normal[a];
       }
@@ -465,9 +486,9 @@ namespace rbc_ifem
     PointWeights weights;
     weights.area   = d.area;
     weights.volume = d.volume;
-    for (unsigned int a = 0; a < cell_nodes[c].size(); ++a)
+    for (unsigned int a = 0; a < numbering->cell_nodes[c].size(); ++a)
       {
-        const unsigned int i = cell_nodes[c][a];
+        const unsigned int i = numbering->cell_nodes[c][a];
         weights.mass += d.mass[i] * shape_values(a, q);
         weights.normal += shape_values(a, q) * d.normal[i];
         for (unsigned int alpha = 0; alpha < 2; ++alpha)
@@ -489,8 +510,8 @@ namespace rbc_ifem
   {
     const std::vector<double> areas = nodal_areas(x);
     Vector<double>            densities(f.size());
-    for (unsigned int node = 0; node < node_dofs.size(); ++node)
-      for (const types::global_dof_index i : node_dofs[node])
+    for (unsigned int node = 0; node < numbering->node_dofs.size(); ++node)
+      for (const types::global_dof_index i : numbering->node_dofs[node])
         densities[i] = f[i] / areas[node];
     return densities;
   }
@@ -504,10 +525,10 @@ namespace rbc_ifem
   Vector<double>
   Membrane::local_area_changes(const Vector<double> &x) const
   {
-    Vector<double> changes(cell_dofs.size());
+    Vector<double> changes(numbering->cell_dofs.size());
     std::visit(
       [&](const auto &law) {
-        for (unsigned int c = 0; c < cell_dofs.size(); ++c)
+        for (unsigned int c = 0; c < numbering->cell_dofs.size(); ++c)
           changes[c] = cell_terms(law, c, local_positions(c, x)).area /
                          reference_cell_areas[c] -
                        1.;

@@ -146,10 +146,11 @@ namespace rbc_ifem
   void
   Membrane::find_cells_around_nodes()
   {
-    cells_around_node.resize(n_nodes);
-    for (unsigned int c = 0; c < cell_nodes.size(); ++c)
+    numbering->cells_around_node.resize(numbering->n_nodes);
+    for (unsigned int c = 0; c < numbering->cell_nodes.size(); ++c)
       for (unsigned int a = 0; a < scalar_fe.n_dofs_per_cell(); ++a)
-        cells_around_node[cell_nodes[c][a]].emplace_back(c, a);
+        numbering->cells_around_node[numbering->cell_nodes[c][a]].emplace_back(
+          c, a);
   }
 
   const SparsityPattern &
@@ -157,28 +158,31 @@ namespace rbc_ifem
   {
     // The stiffness couples the DoFs of all cells around a node: the
     // bending energy of a node depends on them through its sums. Made on
-    // the first stiffness(), so that ranks that hold a cell without owning
-    // it never store the pattern (as large as the rest of the Membrane).
-    if (stiffness_sparsity.empty())
+    // the first stiffness() of any membrane that shares the numbering, so
+    // that a rank that owns no cell never stores it, and one that owns
+    // several stores it once.
+    if (numbering->stiffness_sparsity.empty())
       {
         DynamicSparsityPattern coupled(dof_handler.n_dofs());
-        for (unsigned int i = 0; i < n_nodes; ++i)
+        for (unsigned int i = 0; i < numbering->n_nodes; ++i)
           {
             const std::vector<types::global_dof_index> patch = patch_dofs(i);
             for (const types::global_dof_index row : patch)
               coupled.add_entries(row, patch.begin(), patch.end(), true);
           }
-        stiffness_sparsity.copy_from(coupled);
+        numbering->stiffness_sparsity.copy_from(coupled);
       }
-    return stiffness_sparsity;
+    return numbering->stiffness_sparsity;
   }
 
   std::vector<types::global_dof_index>
   Membrane::patch_dofs(const unsigned int i) const
   {
     std::vector<types::global_dof_index> patch;
-    for (const auto &[c, a] : cells_around_node[i])
-      patch.insert(patch.end(), cell_dofs[c].begin(), cell_dofs[c].end());
+    for (const auto &[c, a] : numbering->cells_around_node[i])
+      patch.insert(patch.end(),
+                   numbering->cell_dofs[c].begin(),
+                   numbering->cell_dofs[c].end());
     std::sort(patch.begin(), patch.end());
     patch.erase(std::unique(patch.begin(), patch.end()), patch.end());
     return patch;
@@ -212,12 +216,12 @@ namespace rbc_ifem
   std::vector<bool>
   Membrane::cells_for_sum_gradients() const
   {
-    const auto [first_cell, end_cell] = share(cell_dofs.size());
-    const auto [first_node, end_node] = share(n_nodes);
-    std::vector<bool> needed(cell_dofs.size(), false);
+    const auto [first_cell, end_cell] = share(numbering->cell_dofs.size());
+    const auto [first_node, end_node] = share(numbering->n_nodes);
+    std::vector<bool> needed(numbering->cell_dofs.size(), false);
     std::fill(needed.begin() + first_cell, needed.begin() + end_cell, true);
     for (unsigned int i = first_node; i < end_node; ++i)
-      for (const auto &[c, a] : cells_around_node[i])
+      for (const auto &[c, a] : numbering->cells_around_node[i])
         needed[c] = true;
     return needed;
   }
@@ -227,21 +231,21 @@ namespace rbc_ifem
   {
     using First                       = Sacado::Fad::SFad<double, 9>;
     const unsigned int n              = fe.n_dofs_per_cell();
-    const auto [first_cell, end_cell] = share(cell_dofs.size());
+    const auto [first_cell, end_cell] = share(numbering->cell_dofs.size());
     const std::vector<bool> needed    = cells_for_sum_gradients();
     SumGradients            gradients;
     gradients.area.reinit(dof_handler.n_dofs());
     gradients.volume.reinit(dof_handler.n_dofs());
-    gradients.nodal_sums.resize(cell_dofs.size());
+    gradients.nodal_sums.resize(numbering->cell_dofs.size());
     FullMatrix<double> D(n_point_integrands, 9), DL(n_point_integrands, n);
     Vector<double>     values(n), z(9);
-    for (unsigned int c = 0; c < cell_dofs.size(); ++c)
+    for (unsigned int c = 0; c < numbering->cell_dofs.size(); ++c)
       {
         if (!needed[c])
           continue;
         const bool own = c >= first_cell && c < end_cell;
-        x.extract_subvector_to(cell_dofs[c].begin(),
-                               cell_dofs[c].end(),
+        x.extract_subvector_to(numbering->cell_dofs[c].begin(),
+                               numbering->cell_dofs[c].end(),
                                values.begin());
         FullMatrix<double> &J = gradients.nodal_sums[c];
         J.reinit(7 * scalar_fe.n_dofs_per_cell(), n);
@@ -259,8 +263,8 @@ namespace rbc_ifem
             if (own)
               for (unsigned int k = 0; k < n; ++k)
                 {
-                  gradients.area[cell_dofs[c][k]] += DL(0, k);
-                  gradients.volume[cell_dofs[c][k]] += DL(1, k);
+                  gradients.area[numbering->cell_dofs[c][k]] += DL(0, k);
+                  gradients.volume[numbering->cell_dofs[c][k]] += DL(1, k);
                 }
             add_nodal_sum_derivatives(q, DL, J);
           }
@@ -299,7 +303,7 @@ namespace rbc_ifem
                               SparseMatrix<double> &K) const
   {
     const unsigned int n              = fe.n_dofs_per_cell();
-    const auto [first_cell, end_cell] = share(cell_dofs.size());
+    const auto [first_cell, end_cell] = share(numbering->cell_dofs.size());
     // The law is chosen once, outside the loop over the cells.
     const auto add_with_law = [&](const auto &law) {
       using First  = Sacado::Fad::SFad<double, 9>;
@@ -308,8 +312,8 @@ namespace rbc_ifem
       Vector<double>     values(n), z(9);
       for (unsigned int c = first_cell; c < end_cell; ++c)
         {
-          x.extract_subvector_to(cell_dofs[c].begin(),
-                                 cell_dofs[c].end(),
+          x.extract_subvector_to(numbering->cell_dofs[c].begin(),
+                                 numbering->cell_dofs[c].end(),
                                  values.begin());
           cell_matrix = 0.;
           for (unsigned int q = 0; q < quadrature.size(); ++q)
@@ -327,7 +331,7 @@ namespace rbc_ifem
               H.mmult(HL, L);
               L.Tmmult(cell_matrix, HL, /*adding=*/true);
             }
-          K.add(cell_dofs[c], cell_matrix);
+          K.add(numbering->cell_dofs[c], cell_matrix);
         }
     };
     std::visit(add_with_law, elastic_law);
@@ -339,17 +343,19 @@ namespace rbc_ifem
     const std::vector<FullMatrix<double>> &nodal_sum_gradients,
     SparseMatrix<double>                  &K) const
   {
-    const auto [first_node, end_node] = share(n_nodes);
+    const auto [first_node, end_node] = share(numbering->n_nodes);
     for (unsigned int i = first_node; i < end_node; ++i)
       {
         const std::vector<types::global_dof_index> patch = patch_dofs(i);
         FullMatrix<double> J(7, patch.size()), BJ(7, patch.size()),
           patch_matrix(patch.size(), patch.size());
-        for (const auto &[c, a] : cells_around_node[i])
+        for (const auto &[c, a] : numbering->cells_around_node[i])
           for (unsigned int k = 0; k < fe.n_dofs_per_cell(); ++k)
             {
               const unsigned int column =
-                std::lower_bound(patch.begin(), patch.end(), cell_dofs[c][k]) -
+                std::lower_bound(patch.begin(),
+                                 patch.end(),
+                                 numbering->cell_dofs[c][k]) -
                 patch.begin();
               for (unsigned int r = 0; r < 7; ++r)
                 J(r, column) += nodal_sum_gradients[c](7 * a + r, k);

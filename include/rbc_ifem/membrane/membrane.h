@@ -19,6 +19,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <array>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -107,8 +108,17 @@ namespace rbc_ifem
   class Membrane
   {
   public:
+    /**
+     * The membrane whose reference surface is @p reference. With @p like, a
+     * membrane on a mesh of the same topology (the same reference shape
+     * placed elsewhere, as every cell of a population), it shares like's
+     * numbering of the DoFs and nodes and its stiffness's sparsity pattern
+     * instead of making its own: the larger part of a membrane's memory
+     * (a new numbering is made if the DoFs of a cell turn out otherwise).
+     */
     Membrane(const Triangulation<2, 3> &reference,
-             const MembraneParameters  &parameters);
+             const MembraneParameters  &parameters,
+             const Membrane            *like = nullptr);
 
     const DoFHandler<2, 3> &
     get_dof_handler() const;
@@ -126,10 +136,10 @@ namespace rbc_ifem
     share_work(const MPI_Comm comm);
 
     /**
-     * Drop what only the cell's owner needs, its reference metric and the
-     * stiffness's sparsity pattern: made again on the next energy or
-     * stiffness. For a rank that has handed the cell to another
-     * (CellOwners::place()); no stiffness of this membrane may be left.
+     * Drop what only the cell's owner needs, its reference metric: made
+     * again on the next energy or stiffness. For a rank that has handed
+     * the cell to another (CellOwners::place()). The stiffness's sparsity
+     * pattern, shared by the membranes made alike, stays once made.
      */
     void
     forget_owner_data();
@@ -255,9 +265,10 @@ namespace rbc_ifem
     void
     tabulate_shape_functions();
     /// The nodes, numbered by the DoF of their x component, and every
-    /// cell's DoFs and nodes.
+    /// cell's DoFs and nodes: @p like's numbering if it numbers every cell's
+    /// DoFs as this membrane's DoF handler does.
     void
-    number_nodes();
+    number_nodes(const Membrane *like);
     /// cells_around_node.
     void
     find_cells_around_nodes();
@@ -432,19 +443,32 @@ namespace rbc_ifem
     QGauss<2>                quadrature;
     Vector<double>           reference;
 
-    /// Per cell: its DoFs, and per local DoF the node (a cell-local base
-    /// function) and the global node number.
-    std::vector<std::vector<types::global_dof_index>>   cell_dofs;
-    std::vector<std::vector<unsigned int>>              cell_nodes;
-    unsigned int                                        n_nodes = 0;
-    std::vector<unsigned int>                           component_of_dof;
-    std::vector<std::array<types::global_dof_index, 3>> node_dofs;
-    /// Per node, the (cell, local node) pairs of the cells around it.
-    std::vector<std::vector<std::pair<unsigned int, unsigned int>>>
-      cells_around_node;
-    /// The DoFs coupled by the stiffness: those of the cells around a node
-    /// (stiffness_pattern()).
-    mutable SparsityPattern stiffness_sparsity;
+    /**
+     * What depends only on the mesh's topology, not on where it is: the
+     * numbering of the DoFs and nodes and the stiffness's sparsity
+     * pattern. Membranes on one reference shape placed in several places
+     * (the cells of a population) share one (the constructor's @p like).
+     */
+    struct Numbering
+    {
+      /// Per cell: its DoFs, and per local DoF the node (a cell-local base
+      /// function) and the global node number.
+      std::vector<std::vector<types::global_dof_index>>   cell_dofs;
+      std::vector<std::vector<unsigned int>>              cell_nodes;
+      unsigned int                                        n_nodes = 0;
+      std::vector<unsigned int>                           component_of_dof;
+      std::vector<std::array<types::global_dof_index, 3>> node_dofs;
+      /// Per node, the (cell, local node) pairs of the cells around it.
+      std::vector<std::vector<std::pair<unsigned int, unsigned int>>>
+        cells_around_node;
+      /// The DoFs coupled by the stiffness: those of the cells around a
+      /// node (stiffness_pattern()), made on the first stiffness of any
+      /// membrane that shares it.
+      SparsityPattern stiffness_sparsity;
+    };
+    /// Shared with the membranes made like this one; the stiffness pattern
+    /// in it is filled in lazily, hence not const.
+    std::shared_ptr<Numbering> numbering;
 
     /// Reference geometry per cell and quadrature point: G⁻¹ and sqrt(det G).
     struct ReferenceMetric

@@ -1,9 +1,11 @@
 #ifndef rbc_ifem_tests_membrane_fixtures_h
 #define rbc_ifem_tests_membrane_fixtures_h
 
-// What the membrane tests share: a random vector and the Evans-Fung cell.
+// What the membrane tests share: a random vector, its relative difference,
+// the parameters with every energy term on and the Evans-Fung cell.
 
 #include <rbc_ifem/geometry/cell_surface.h>
+#include <rbc_ifem/membrane/parameters.h>
 
 #include <deal.II/lac/vector.h>
 
@@ -22,6 +24,26 @@ namespace rbc_ifem::test
     for (auto &entry : v)
       entry = uniform(random);
     return v;
+  }
+
+  /// |a - b| / |b|
+  inline double
+  relative_difference(const Vector<double> &a, const Vector<double> &b)
+  {
+    Vector<double> difference(a);
+    difference -= b;
+    return difference.l2_norm() / b.l2_norm();
+  }
+
+  /// The default membrane with bending, area and volume penalties on.
+  inline MembraneParameters
+  every_term()
+  {
+    MembraneParameters parameters;
+    parameters.bending_modulus = 0.2;
+    parameters.area_penalty    = 500.;
+    parameters.volume_penalty  = 500.;
+    return parameters;
   }
 
   /// The Evans-Fung cell at the origin, axis z.

@@ -14,18 +14,10 @@
 using namespace rbc_ifem;
 using test::create_cell;
 using test::random_vector;
+using test::relative_difference;
 
 namespace
 {
-  /// |a - b| / |b|
-  double
-  relative_difference(const Vector<double> &a, const Vector<double> &b)
-  {
-    Vector<double> difference(a);
-    difference -= b;
-    return difference.l2_norm() / b.l2_norm();
-  }
-
   void
   check_shared(Checker           &check,
                const std::string &law,
@@ -33,12 +25,9 @@ namespace
   {
     Triangulation<2, 3> surface;
     create_cell(surface, 2);
-    MembraneParameters parameters;
-    parameters.law             = law;
-    parameters.degree          = degree;
-    parameters.bending_modulus = 0.2;
-    parameters.area_penalty    = 500.;
-    parameters.volume_penalty  = 500.;
+    MembraneParameters parameters = test::every_term();
+    parameters.law                = law;
+    parameters.degree             = degree;
     const Membrane alone(surface, parameters);
     Membrane       shared(surface, parameters);
     shared.share_work(MPI_COMM_WORLD);

@@ -42,7 +42,10 @@
 #include <cmath>
 #include <random>
 
+#include "unit/membrane/membrane_fixtures.h"
+
 using namespace rbc_ifem;
+using test::every_term;
 
 namespace
 {
@@ -63,16 +66,6 @@ namespace
       cells.push_back(CellPlacement{Point<3>(spacing * (c + 0.5), 0., 0.),
                                     Tensor<1, 3>({1., 0., 0.})});
     return cells;
-  }
-
-  MembraneParameters
-  every_term()
-  {
-    MembraneParameters membrane;
-    membrane.bending_modulus = 0.2;
-    membrane.area_penalty    = 500.;
-    membrane.volume_penalty  = 500.;
-    return membrane;
   }
 
   /// Repulsion, aggregation (its 2 µm cutoff reaches past the neighbours)

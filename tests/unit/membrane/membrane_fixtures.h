@@ -2,9 +2,11 @@
 #define rbc_ifem_tests_membrane_fixtures_h
 
 // What the membrane tests share: a random vector, its relative difference,
-// the parameters with every energy term on and the Evans-Fung cell.
+// the parameters with every energy term on, a membrane's response at a
+// shape and the Evans-Fung cell.
 
 #include <rbc_ifem/geometry/cell_surface.h>
+#include <rbc_ifem/membrane/membrane.h>
 #include <rbc_ifem/membrane/parameters.h>
 
 #include <deal.II/lac/vector.h>
@@ -44,6 +46,31 @@ namespace rbc_ifem::test
     parameters.area_penalty    = 500.;
     parameters.volume_penalty  = 500.;
     return parameters;
+  }
+
+  /// A membrane's energy, forces, and K v with its tangent stiffness K, at
+  /// one shape.
+  struct Response
+  {
+    double            energy = 0.;
+    Vector<double>    forces;
+    Vector<double>    Kv;
+    MembraneStiffness K;
+  };
+
+  /// The Response of @p membrane at @p x, with K times @p v.
+  inline Response
+  respond(const Membrane       &membrane,
+          const Vector<double> &x,
+          const Vector<double> &v)
+  {
+    Response response;
+    response.forces.reinit(x.size());
+    response.Kv.reinit(x.size());
+    response.energy = membrane.energy_and_forces(x, response.forces).total();
+    membrane.stiffness(x, response.K);
+    response.K.vmult_add(response.Kv, v);
+    return response;
   }
 
   /// The Evans-Fung cell at the origin, axis z.

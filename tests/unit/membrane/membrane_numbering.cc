@@ -12,6 +12,8 @@
 #include "check.h"
 #include "membrane_fixtures.h"
 
+#include <utility>
+
 using namespace rbc_ifem;
 using test::create_cell;
 using test::random_vector;
@@ -44,31 +46,27 @@ namespace
     x += random_vector(x.size(), 0.05, random);
     const Vector<double> v = random_vector(x.size(), 1., random);
 
-    Vector<double>    f_like(x.size()), f_alone(x.size());
-    const double      e_like  = made_like.energy_and_forces(x, f_like).total();
-    const double      e_alone = alone.energy_and_forces(x, f_alone).total();
-    MembraneStiffness K_like, K_alone;
-    made_like.stiffness(x, K_like);
-    alone.stiffness(x, K_alone);
-    Vector<double> Kv_like(x.size()), Kv_alone(x.size());
-    K_like.vmult_add(Kv_like, v);
-    K_alone.vmult_add(Kv_alone, v);
+    test::Response       like      = test::respond(made_like, x, v);
+    const test::Response by_itself = test::respond(alone, x, v);
 
     check.near(name + ": reference positions, made like against alone",
                relative_difference(made_like.reference_positions(),
                                    alone.reference_positions()),
                0.,
                0.);
-    check.near(name + ": energy, made like against alone", e_like, e_alone, 0.);
+    check.near(name + ": energy, made like against alone",
+               like.energy,
+               by_itself.energy,
+               0.);
     check.near(name + ": forces, made like against alone (relative)",
-               relative_difference(f_like, f_alone),
+               relative_difference(like.forces, by_itself.forces),
                0.,
                0.);
     check.near(name + ": K v, made like against alone (relative)",
-               relative_difference(Kv_like, Kv_alone),
+               relative_difference(like.Kv, by_itself.Kv),
                0.,
                0.);
-    return K_like;
+    return std::move(like.K);
   }
 } // namespace
 

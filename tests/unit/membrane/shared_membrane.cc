@@ -38,25 +38,19 @@ namespace
     x += random_vector(x.size(), 0.05, random);
     const Vector<double> v = random_vector(x.size(), 1., random);
 
-    Vector<double>    f_alone(x.size()), f_shared(x.size());
-    const double      e_alone  = alone.energy_and_forces(x, f_alone).total();
-    const double      e_shared = shared.energy_and_forces(x, f_shared).total();
-    MembraneStiffness K_alone, K_shared;
-    alone.stiffness(x, K_alone);
-    shared.stiffness(x, K_shared);
-    Vector<double> Kv_alone(x.size()), Kv_shared(x.size());
-    K_alone.vmult_add(Kv_alone, v);
-    K_shared.vmult_add(Kv_shared, v);
+    const test::Response     a        = test::respond(alone, x, v);
+    const test::Response     s        = test::respond(shared, x, v);
+    const MembraneStiffness &K_shared = s.K;
 
     const std::string name = law + " Q" + std::to_string(degree) + ": ";
     check.at_most(name + "energy, shared against alone (relative)",
-                  std::abs(e_shared - e_alone) / e_alone,
+                  std::abs(s.energy - a.energy) / a.energy,
                   1e-13);
     check.at_most(name + "forces, shared against alone (relative)",
-                  relative_difference(f_shared, f_alone),
+                  relative_difference(s.forces, a.forces),
                   1e-12);
     check.at_most(name + "K v, shared against alone (relative)",
-                  relative_difference(Kv_shared, Kv_alone),
+                  relative_difference(s.Kv, a.Kv),
                   1e-12);
     // Each rank holds only its share of K's sparse part: the share is a
     // real split, not a copy.

@@ -8,7 +8,7 @@
 
 namespace rbc_ifem
 {
-  CellBoxes::CellBoxes(const std::vector<std::unique_ptr<Membrane>> &membranes,
+  CellBoxes::CellBoxes(const std::vector<std::shared_ptr<Membrane>> &membranes,
                        const std::vector<Vector<double>>            &x,
                        const std::optional<double>                  &period)
     : period(period)

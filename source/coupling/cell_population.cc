@@ -16,28 +16,70 @@
 
 namespace rbc_ifem
 {
+  namespace
+  {
+    /// The longest edge of the cells of @p surface [µm].
+    double
+    longest_edge(const Triangulation<2, 3> &surface)
+    {
+      double longest = 0.;
+      for (const auto &cell : surface.active_cell_iterators())
+        for (const unsigned int l : cell->line_indices())
+          longest = std::max(longest, cell->line(l)->diameter());
+      return longest;
+    }
+  } // namespace
+
   CellPopulation::CellPopulation(const std::vector<CellPlacement> &placements,
                                  const CellParameters             &cells,
                                  const MembraneParameters         &membrane)
-    : references(placements,
-                 EvansFungShape::of(cells),
-                 cells.surface_refinements)
+    : placements(placements)
+    , shape_of_cells(EvansFungShape::of(cells))
+    , surface_refinements(cells.surface_refinements)
+    , membrane_parameters(membrane)
     , flat_mapping(1)
+    , reference_meshes(placements.size())
   {
     // Every cell is the one reference shape placed elsewhere: they share
-    // the first cell's numbering and stiffness pattern.
-    for (const Triangulation<2, 3> *surface : references.surfaces())
+    // the first cell's numbering and stiffness pattern. Until the cells have
+    // owners, every rank keeps every cell's Membrane.
+    for (unsigned int c = 0; c < placements.size(); ++c)
       {
-        cell_membranes.push_back(std::make_unique<Membrane>(
-          *surface,
-          membrane,
-          cell_membranes.empty() ? nullptr : cell_membranes.front().get()));
-        x.push_back(cell_membranes.back()->reference_positions());
+        cell_membranes.push_back(make_membrane(c, reference_meshes[c]));
+        if (c == 0)
+          model = cell_membranes.front();
+        const Membrane &membrane = *cell_membranes.back();
+        x.push_back(membrane.reference_positions());
         forces.emplace_back(x.back().size());
-        n_membrane_points += cell_membranes.back()->nodes().size();
+        n_membrane_points += membrane.nodes().size();
+        areas0.push_back(membrane.reference_area());
+        volumes0.push_back(membrane.reference_volume());
+        largest_spacing =
+          std::max(largest_spacing,
+                   longest_edge(*reference_meshes[c]) /
+                     membrane.get_dof_handler().get_fe().degree);
       }
     add_force(
       std::make_unique<MembraneElasticity>(cell_membranes, cell_owners));
+  }
+
+  std::shared_ptr<Membrane>
+  CellPopulation::make_membrane(
+    const unsigned int                    c,
+    std::unique_ptr<Triangulation<2, 3>> &mesh) const
+  {
+    mesh = std::make_unique<Triangulation<2, 3>>();
+    create_cell_surface(*mesh,
+                        shape_of_cells,
+                        placements[c],
+                        surface_refinements);
+    return std::make_shared<Membrane>(*mesh, membrane_parameters, model.get());
+  }
+
+  bool
+  CellPopulation::holds(const unsigned int c) const
+  {
+    return reference_meshes[c] != nullptr;
   }
 
   void
@@ -56,7 +98,7 @@ namespace rbc_ifem
         place_owners();
       }
     else
-      for (const std::unique_ptr<Membrane> &membrane : cell_membranes)
+      for (const std::shared_ptr<Membrane> &membrane : cell_membranes)
         membrane->share_work(comm);
   }
 
@@ -102,8 +144,18 @@ namespace rbc_ifem
     ++n_stiffness_changes;
     if (!lost.empty())
       stiffnesses.clear();
+    // The model stays with every rank, without the data of an owner.
     for (const unsigned int c : lost)
-      cell_membranes[c]->forget_owner_data();
+      if (c == 0)
+        model->forget_owner_data();
+    for (unsigned int c = 1; c < size(); ++c)
+      if (cell_owners.owns(c) && !holds(c))
+        cell_membranes[c] = make_membrane(c, reference_meshes[c]);
+      else if (!cell_owners.owns(c) && holds(c))
+        {
+          cell_membranes[c] = model;
+          reference_meshes[c].reset();
+        }
   }
 
   unsigned int
@@ -308,7 +360,7 @@ namespace rbc_ifem
     return total_energy;
   }
 
-  const std::vector<std::unique_ptr<Membrane>> &
+  const std::vector<std::shared_ptr<Membrane>> &
   CellPopulation::membranes() const
   {
     return cell_membranes;
@@ -481,9 +533,16 @@ namespace rbc_ifem
   MembraneSurfaces
   CellPopulation::membrane_surfaces() const
   {
-    std::vector<const Membrane *> membranes;
-    for (const auto &membrane : cell_membranes)
-      membranes.push_back(membrane.get());
+    // The mapping curves each surface by its cell's reference shape: it
+    // needs every cell's own Membrane while it is made, and this rank makes
+    // those it does not keep for that time only.
+    std::vector<std::unique_ptr<Triangulation<2, 3>>> meshes(size());
+    std::vector<std::shared_ptr<Membrane>>            made(size());
+    std::vector<const Membrane *>                     membranes;
+    for (unsigned int c = 0; c < size(); ++c)
+      membranes.push_back(holds(c) ?
+                            cell_membranes[c].get() :
+                            (made[c] = make_membrane(c, meshes[c])).get());
     const auto current =
       std::make_shared<const CurrentSurfaces>(current_surfaces(), membranes, x);
     return MembraneSurfaces(current->meshes(), current->mapping, current);
@@ -492,25 +551,19 @@ namespace rbc_ifem
   double
   CellPopulation::point_spacing() const
   {
-    double longest_edge = 0.;
-    for (const Triangulation<2, 3> *surface : references.surfaces())
-      for (const auto &cell : surface->active_cell_iterators())
-        for (const unsigned int l : cell->line_indices())
-          longest_edge = std::max(longest_edge, cell->line(l)->diameter());
-    return longest_edge /
-           cell_membranes.front()->get_dof_handler().get_fe().degree;
+    return largest_spacing;
   }
 
   double
   CellPopulation::reference_area(const unsigned int c) const
   {
-    return cell_membranes[c]->reference_area();
+    return areas0[c];
   }
 
   double
   CellPopulation::reference_volume(const unsigned int c) const
   {
-    return cell_membranes[c]->reference_volume();
+    return volumes0[c];
   }
 
   std::vector<std::string>

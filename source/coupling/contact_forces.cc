@@ -170,7 +170,7 @@ namespace rbc_ifem
   }
 
   MembraneInteraction::MembraneInteraction(
-    const std::vector<std::unique_ptr<Membrane>> &membranes,
+    const std::vector<std::shared_ptr<Membrane>> &membranes,
     std::unique_ptr<GapPotential>                 potential,
     const std::optional<double>                  &period,
     const CellOwners                             &owners)
@@ -316,7 +316,7 @@ namespace rbc_ifem
   }
 
   WallRepulsion::WallRepulsion(
-    const std::vector<std::unique_ptr<Membrane>> &membranes,
+    const std::vector<std::shared_ptr<Membrane>> &membranes,
     const double                                  radius,
     const RepulsivePotential                     &potential,
     const CellOwners                             &owners)

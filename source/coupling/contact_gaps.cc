@@ -31,7 +31,7 @@ namespace rbc_ifem
      * @p gaps of both cells.
      */
     void
-    add_cell_gaps(const std::vector<std::unique_ptr<Membrane>> &membranes,
+    add_cell_gaps(const std::vector<std::shared_ptr<Membrane>> &membranes,
                   const std::vector<Vector<double>>            &x,
                   const std::optional<double>                   period,
                   const CellOwners                             &owners,
@@ -76,7 +76,7 @@ namespace rbc_ifem
   } // namespace
 
   std::vector<CellGaps>
-  measure_gaps(const std::vector<std::unique_ptr<Membrane>> &membranes,
+  measure_gaps(const std::vector<std::shared_ptr<Membrane>> &membranes,
                const std::vector<Vector<double>>            &x,
                const std::optional<double>                   wall_radius,
                const std::optional<double>                   period,

@@ -4,7 +4,7 @@ namespace rbc_ifem
 {
 
   MembraneElasticity::MembraneElasticity(
-    const std::vector<std::unique_ptr<Membrane>> &membranes,
+    const std::vector<std::shared_ptr<Membrane>> &membranes,
     const CellOwners                             &owners)
     : membranes(membranes)
     , owners(owners)
@@ -104,7 +104,7 @@ namespace rbc_ifem
     return result;
   }
 
-  Tether::Tether(const std::vector<std::unique_ptr<Membrane>> &membranes,
+  Tether::Tether(const std::vector<std::shared_ptr<Membrane>> &membranes,
                  const double                                  stiffness,
                  const CellOwners                             &owners)
     : membranes(membranes)

@@ -6,7 +6,7 @@
 namespace rbc_ifem
 {
   PushingForce::PushingForce(
-    const std::vector<std::unique_ptr<Membrane>> &membranes,
+    const std::vector<std::shared_ptr<Membrane>> &membranes,
     const std::vector<Tensor<1, 3>>              &cell_forces,
     const CellOwners                             &owners)
     : membranes(membranes)

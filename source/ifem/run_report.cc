@@ -132,9 +132,12 @@ namespace rbc_ifem
                           const unsigned int    points_here,
                           const unsigned int    fluid_cells_here) const
   {
-    unsigned int owned = 0;
+    unsigned int owned = 0, kept = 0;
     for (unsigned int c = 0; c < cells.size(); ++c)
-      owned += cells.owners().owns(c);
+      {
+        owned += cells.owners().owns(c);
+        kept += cells.holds(c);
+      }
     // The ghosts: the other cells within contact reach of the owned ones,
     // whose points the rank's contact search sees (MembraneInteraction).
     const std::vector<bool> near =
@@ -154,7 +157,8 @@ namespace rbc_ifem
                   " red cells it holds (fewer cells than ranks)" :
                 "owns " + spread(owned) + " of the " +
                   std::to_string(cells.size()) +
-                  " red cells it holds (CellOwners) and sees " +
+                  " red cells (CellOwners), keeps the membranes of " +
+                  spread(kept) + " (its own and the first) and sees " +
                   spread(ghosts) + " more in contact reach (ghosts)")
           << ", " << spread(points_here) << " membrane points in its "
           << spread(fluid_cells_here) << " fluid cells" << std::endl;

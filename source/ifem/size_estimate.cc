@@ -19,7 +19,7 @@ namespace rbc_ifem
     // rank, fluid global refinements 1-3, diffusion band refinements 1-2,
     // 1 and 7 cells; doc/results/benchmarks/size_estimate.csv): what a rank
     // holds besides the meshes and the membranes, per estimated DoF of each
-    // mesh on it, and per membrane point (every rank holds every membrane).
+    // mesh on it, and per membrane point (all of them, as on one rank).
     constexpr double base_mb              = 200.;
     constexpr double kb_per_fluid_dof     = 1.6;
     constexpr double kb_per_diffusion_dof = 8.;

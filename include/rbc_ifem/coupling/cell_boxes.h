@@ -28,7 +28,7 @@ namespace rbc_ifem
   public:
     /// The boxes at the positions @p x (one Vector per cell), in a segment
     /// of length @p period along x if there is one.
-    CellBoxes(const std::vector<std::unique_ptr<Membrane>> &membranes,
+    CellBoxes(const std::vector<std::shared_ptr<Membrane>> &membranes,
               const std::vector<Vector<double>>            &x,
               const std::optional<double>                  &period);
 

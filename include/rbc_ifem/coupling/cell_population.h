@@ -3,8 +3,8 @@
 
 #include <rbc_ifem/coupling/cell_force.h>
 #include <rbc_ifem/coupling/cell_owners.h>
-#include <rbc_ifem/geometry/cell_membranes.h>
 #include <rbc_ifem/geometry/cell_placement.h>
+#include <rbc_ifem/geometry/evans_fung.h>
 #include <rbc_ifem/geometry/membrane_surfaces.h>
 #include <rbc_ifem/geometry/parameters.h>
 #include <rbc_ifem/membrane/membrane.h>
@@ -53,6 +53,15 @@ namespace rbc_ifem
    * cell in Membrane::nodes() order; forces and velocities come and go in
    * that order. The forces on the points are the sum of the CellForce
    * objects the population holds.
+   *
+   * Every rank knows every cell's positions, but once the cells have owners
+   * (share_work()) a rank keeps the reference mesh and the Membrane only of
+   * the cells it owns: it makes them when it takes a cell over and drops
+   * them when it hands the cell on. What it needs of another cell depends on
+   * the reference shape alone, not on where the cell was placed (the
+   * numbering of its nodes, its reference areas, its normals at given
+   * positions), and it takes that from the first cell's Membrane, which
+   * every rank keeps: the model of membranes().
    */
   class CellPopulation
   {
@@ -183,9 +192,21 @@ namespace rbc_ifem
     double
     energy() const;
 
-    /// Every cell's Membrane, in order: what cell forces act on.
-    const std::vector<std::unique_ptr<Membrane>> &
+    /**
+     * Every cell's Membrane, in order: what cell forces act on. Entry c is
+     * cell c's own where this rank owns c (every c on one rank, or with the
+     * membranes shared); elsewhere it is the model, the first cell's: right
+     * for the numbering, the reference areas and measures, and the normals
+     * and areas at cell c's positions (all the same for every placement of
+     * the shape, to rounding), wrong for what depends on where c was placed
+     * (Membrane::reference_positions(), build_patches()).
+     */
+    const std::vector<std::shared_ptr<Membrane>> &
     membranes() const;
+
+    /// Whether this rank keeps cell @p c's own Membrane (membranes()).
+    bool
+    holds(const unsigned int c) const;
 
     /// Move every point by Δt v, the last of the six steps, and choose the
     /// cells' owners anew (collective after share_work()); a stiffness
@@ -269,10 +290,19 @@ namespace rbc_ifem
 
   private:
     /**
+     * Make cell @p c's reference mesh and Membrane (the model's numbering
+     * shared) into @p mesh and return the Membrane: what the constructor does
+     * for every cell, and a rank for a cell it takes over.
+     */
+    std::shared_ptr<Membrane>
+    make_membrane(const unsigned int                    c,
+                  std::unique_ptr<Triangulation<2, 3>> &mesh) const;
+
+    /**
      * Give the cells to owners by where they are now (CellOwners::place()),
-     * after share_work(). A rank that hands a cell over forgets its owner
-     * data (Membrane::forget_owner_data()); the stiffness, taken with the
-     * owners before, is dropped.
+     * after share_work(). A rank that hands a cell over drops its mesh and
+     * Membrane, one that takes a cell over makes them; the stiffness, taken
+     * with the owners before, is dropped.
      */
     void
     place_owners();
@@ -298,9 +328,23 @@ namespace rbc_ifem
     std::vector<Vector<double>>
     owned_rows_diagonal() const;
 
-    const CellMembranes                    references;
-    const MappingQ<2, 3>                   flat_mapping;
-    std::vector<std::unique_ptr<Membrane>> cell_membranes;
+    const std::vector<CellPlacement> placements;
+    const EvansFungShape             shape_of_cells;
+    const unsigned int               surface_refinements;
+    const MembraneParameters         membrane_parameters;
+    const MappingQ<2, 3>             flat_mapping;
+    /// The reference meshes of the cells whose own Membrane this rank keeps
+    /// (holds()), null for the others; declared before the membranes that
+    /// refer to them.
+    std::vector<std::unique_ptr<Triangulation<2, 3>>> reference_meshes;
+    /// The first cell's Membrane, kept by every rank (membranes()).
+    std::shared_ptr<Membrane>              model;
+    std::vector<std::shared_ptr<Membrane>> cell_membranes;
+    /// Every cell's reference area and volume [µm², µm³], and the largest
+    /// point spacing of them all (point_spacing()), measured at the start.
+    std::vector<double> areas0;
+    std::vector<double> volumes0;
+    double              largest_spacing = 0.;
     /// Declared before the forces, which hold it.
     CellOwners cell_owners;
     /// The period of the segment the owners are placed in (share_work()).

@@ -125,7 +125,7 @@ namespace rbc_ifem
     /// The @p potential between the @p membranes, across the ends of a
     /// segment with a @p period; each rank adds the forces on the cells of
     /// its @p owners (held by reference).
-    MembraneInteraction(const std::vector<std::unique_ptr<Membrane>> &membranes,
+    MembraneInteraction(const std::vector<std::shared_ptr<Membrane>> &membranes,
                         std::unique_ptr<GapPotential>                 potential,
                         const std::optional<double>                  &period,
                         const CellOwners                             &owners);
@@ -155,7 +155,7 @@ namespace rbc_ifem
     for_each_close_pair(const std::vector<Vector<double>> &x,
                         const PairFunction                &f) const;
 
-    const std::vector<std::unique_ptr<Membrane>> &membranes;
+    const std::vector<std::shared_ptr<Membrane>> &membranes;
     const std::unique_ptr<GapPotential>           potential;
     const std::optional<double>                   period;
     const CellOwners                             &owners;
@@ -175,7 +175,7 @@ namespace rbc_ifem
   public:
     /// Each rank adds the forces on the cells of its @p owners (held by
     /// reference).
-    WallRepulsion(const std::vector<std::unique_ptr<Membrane>> &membranes,
+    WallRepulsion(const std::vector<std::shared_ptr<Membrane>> &membranes,
                   const double                                  radius,
                   const RepulsivePotential                     &potential,
                   const CellOwners                             &owners);
@@ -208,7 +208,7 @@ namespace rbc_ifem
                     const Vector<double> &x,
                     Vector<double>       &forces) const;
 
-    const std::vector<std::unique_ptr<Membrane>> &membranes;
+    const std::vector<std::shared_ptr<Membrane>> &membranes;
     const double                                  radius;
     const RepulsivePotential                      potential;
     const CellOwners                             &owners;

@@ -42,7 +42,7 @@ namespace rbc_ifem
    * gets every cell's. Collective on @p owners.
    */
   std::vector<CellGaps>
-  measure_gaps(const std::vector<std::unique_ptr<Membrane>> &membranes,
+  measure_gaps(const std::vector<std::shared_ptr<Membrane>> &membranes,
                const std::vector<Vector<double>>            &x,
                const std::optional<double>                   wall_radius,
                const std::optional<double> period = std::nullopt,

@@ -22,7 +22,7 @@ namespace rbc_ifem
   public:
     /// The membranes of the cells, in the population's order, and the
     /// ranks that own them (held by reference: they may change later).
-    MembraneElasticity(const std::vector<std::unique_ptr<Membrane>> &membranes,
+    MembraneElasticity(const std::vector<std::shared_ptr<Membrane>> &membranes,
                        const CellOwners                             &owners);
 
     CellForceReport
@@ -33,7 +33,7 @@ namespace rbc_ifem
     stiffness(const std::vector<Vector<double>> &positions) const override;
 
   private:
-    const std::vector<std::unique_ptr<Membrane>> &membranes;
+    const std::vector<std::shared_ptr<Membrane>> &membranes;
     const CellOwners                             &owners;
   };
 
@@ -48,7 +48,7 @@ namespace rbc_ifem
   public:
     /// Springs of @p stiffness on the @p membranes; each rank adds the
     /// forces on the cells it owns (@p owners, held by reference).
-    Tether(const std::vector<std::unique_ptr<Membrane>> &membranes,
+    Tether(const std::vector<std::shared_ptr<Membrane>> &membranes,
            const double                                  stiffness,
            const CellOwners                             &owners);
 
@@ -60,7 +60,7 @@ namespace rbc_ifem
     stiffness(const std::vector<Vector<double>> &positions) const override;
 
   private:
-    const std::vector<std::unique_ptr<Membrane>> &membranes;
+    const std::vector<std::shared_ptr<Membrane>> &membranes;
     const double      spring_constant; ///< k [pN/µm]
     const CellOwners &owners;
   };

@@ -28,7 +28,7 @@ namespace rbc_ifem
 
   /// The reference area a_i = ∫ N_i dA0 of every point of every cell.
   inline std::vector<std::vector<double>>
-  reference_point_areas(const std::vector<std::unique_ptr<Membrane>> &membranes)
+  reference_point_areas(const std::vector<std::shared_ptr<Membrane>> &membranes)
   {
     std::vector<std::vector<double>> areas;
     for (const auto &membrane : membranes)

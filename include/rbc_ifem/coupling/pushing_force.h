@@ -25,7 +25,7 @@ namespace rbc_ifem
   public:
     /// Each rank adds the forces on the cells of its @p owners (held by
     /// reference).
-    PushingForce(const std::vector<std::unique_ptr<Membrane>> &membranes,
+    PushingForce(const std::vector<std::shared_ptr<Membrane>> &membranes,
                  const std::vector<Tensor<1, 3>>              &cell_forces,
                  const CellOwners                             &owners);
 
@@ -37,7 +37,7 @@ namespace rbc_ifem
     stiffness(const std::vector<Vector<double>> &positions) const override;
 
   private:
-    const std::vector<std::unique_ptr<Membrane>> &membranes;
+    const std::vector<std::shared_ptr<Membrane>> &membranes;
     const std::vector<Tensor<1, 3>>               cell_forces;
     const CellOwners                             &owners;
     /// a_i / A_c of every point.

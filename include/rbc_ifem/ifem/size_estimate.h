@@ -21,7 +21,9 @@ namespace rbc_ifem
    * into eight. The DoFs are 25 per fluid cell (Q2 velocity and Q1
    * pressure, interior count) and k³ per diffusion cell (FE_Q(k)); the
    * memory is a base plus a measured amount per DoF and per membrane point
-   * (every rank holds every membrane; the constants of size_estimate.cc,
+   * (every membrane point, as one rank holds them: an upper bound on more
+   * ranks, where a rank keeps the membranes of its own cells only; the
+   * constants of size_estimate.cc,
    * from benchmarks/size_estimate.sh, which compares the estimate with what
    * runs build and use: doc/results/benchmarks/size_estimate.csv).
    */

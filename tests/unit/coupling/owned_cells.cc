@@ -17,7 +17,9 @@
 // semi-implicit load L v = Δt Sᵀ K S v on a fully distributed mesh of the
 // segment, its values sent point to point between the points' fluid ranks
 // and the owners (SemiImplicitLoad, PointExchange), equals the load summed
-// over the ranks with K taken alone, and so does its diagonal. Runs on 2,
+// over the ranks with K taken alone, and so does its diagonal. A rank keeps
+// the Membranes of its own cells and of the first only, made anew for a cell
+// it takes over. Runs on 2,
 // 3 and 4 ranks (five cells share out unevenly).
 
 #include <rbc_ifem/coupling/cell_owners.h>
@@ -110,10 +112,30 @@ namespace
   }
 
   /// Every cell has one owner and every point is owned once: each rank
-  /// counts the cells and points it owns.
+  /// counts the cells and points it owns. A rank keeps the Membranes of its
+  /// own cells and of the first (the model) only, each made where its cell
+  /// was placed: with the reference positions of the population @p alone,
+  /// which keeps every cell.
   void
-  check_owners(Checker &check, const CellPopulation &cells)
+  check_owners(Checker              &check,
+               const CellPopulation &cells,
+               const CellPopulation &alone)
   {
+    bool kept_own = true, own_membranes = true;
+    for (unsigned int c = 0; c < n_cells; ++c)
+      {
+        kept_own =
+          kept_own && cells.holds(c) == (cells.owners().owns(c) || c == 0);
+        if (cells.holds(c))
+          own_membranes =
+            own_membranes && cells.membranes()[c]->reference_positions() ==
+                               alone.membranes()[c]->reference_positions();
+      }
+    check.holds("a rank keeps the Membranes of its cells and the model's",
+                kept_own);
+    check.holds("each kept Membrane is made where its cell was placed",
+                own_membranes);
+
     const CellOwners  &owners = cells.owners();
     const unsigned int rank = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
     unsigned int       mine = 0, my_points = 0;
@@ -290,7 +312,7 @@ main(int argc, char *argv[])
 
   check_semi_implicit_load(check, owned, alone);
 
-  check_owners(check, owned);
+  check_owners(check, owned, alone);
   check.holds("the ranks own runs of neighbours (cells 3 and 4 together)",
               owned.owners().owner(3) == owned.owners().owner(4));
 
@@ -303,7 +325,7 @@ main(int argc, char *argv[])
     {
       alone.move(along, 1.);
       owned.move(along, 1.);
-      check_owners(check, owned);
+      check_owners(check, owned, alone);
       forces_moved = std::max(forces_moved,
                               relative_difference(owned.compute_forces(),
                                                   alone.compute_forces()));

@@ -32,33 +32,42 @@ namespace rbc_ifem
 
   CellPopulation::CellPopulation(const std::vector<CellPlacement> &placements,
                                  const CellParameters             &cells,
-                                 const MembraneParameters         &membrane)
+                                 const MembraneParameters         &membrane,
+                                 const MPI_Comm                    communicator,
+                                 const std::optional<double>      &period)
     : placements(placements)
     , shape_of_cells(EvansFungShape::of(cells))
     , surface_refinements(cells.surface_refinements)
     , membrane_parameters(membrane)
     , flat_mapping(1)
     , reference_meshes(placements.size())
+    , period(period)
   {
     // Every cell is the one reference shape placed elsewhere: they share
-    // the first cell's numbering and stiffness pattern. Until the cells have
-    // owners, every rank keeps every cell's Membrane.
+    // the first cell's numbering and stiffness pattern. Each is made here
+    // for its reference positions and measures and dropped again, so that
+    // no rank holds every cell's at once; the first stays as the model.
     for (unsigned int c = 0; c < placements.size(); ++c)
       {
-        cell_membranes.push_back(make_membrane(c, reference_meshes[c]));
+        std::unique_ptr<Triangulation<2, 3>> mesh;
+        const std::shared_ptr<Membrane>      made = make_membrane(c, mesh);
         if (c == 0)
-          model = cell_membranes.front();
-        const Membrane &membrane = *cell_membranes.back();
-        x.push_back(membrane.reference_positions());
+          {
+            model               = made;
+            reference_meshes[0] = std::move(mesh);
+          }
+        cell_membranes.push_back(model);
+        x.push_back(made->reference_positions());
         forces.emplace_back(x.back().size());
-        n_membrane_points += membrane.nodes().size();
-        areas0.push_back(membrane.reference_area());
-        volumes0.push_back(membrane.reference_volume());
+        n_membrane_points += made->nodes().size();
+        areas0.push_back(made->reference_area());
+        volumes0.push_back(made->reference_volume());
         largest_spacing =
           std::max(largest_spacing,
-                   longest_edge(*reference_meshes[c]) /
-                     membrane.get_dof_handler().get_fe().degree);
+                   longest_edge(made->get_dof_handler().get_triangulation()) /
+                     made->get_dof_handler().get_fe().degree);
       }
+    share_work(communicator);
     add_force(
       std::make_unique<MembraneElasticity>(cell_membranes, cell_owners));
   }
@@ -83,21 +92,17 @@ namespace rbc_ifem
   }
 
   void
-  CellPopulation::share_work(const MPI_Comm               comm,
-                             const std::optional<double> &period)
+  CellPopulation::share_work(const MPI_Comm comm)
   {
-    this->period = period;
     // With at least as many cells as ranks each cell has one owner, which
     // computes it alone; with fewer, one owner per cell would leave ranks
     // idle (a single cell on 2 ranks: its stiffness took twice as long),
-    // so every rank computes every cell, each membrane's cell loops split
-    // over all ranks.
+    // so every rank keeps and computes every cell, each membrane's cell
+    // loops split over all ranks.
     if (size() >= Utilities::MPI::n_mpi_processes(comm))
-      {
-        cell_owners = CellOwners(comm);
-        place_owners();
-      }
-    else
+      cell_owners = CellOwners(comm);
+    place_owners();
+    if (!cell_owners.shared())
       for (const std::shared_ptr<Membrane> &membrane : cell_membranes)
         membrane->share_work(comm);
   }
@@ -128,26 +133,32 @@ namespace rbc_ifem
   void
   CellPopulation::place_owners()
   {
-    if (!cell_owners.shared())
-      return;
-    std::vector<double>       where(size());
-    std::vector<unsigned int> points(size());
-    for (unsigned int c = 0; c < size(); ++c)
+    if (cell_owners.shared())
       {
-        const auto &nodes = cell_membranes[c]->nodes();
-        for (const auto &dofs : nodes)
-          where[c] += x[c][dofs[0]] / nodes.size();
-        where[c]  = wrap_into_segment(Point<3>(where[c], 0., 0.), period)[0];
-        points[c] = nodes.size();
+        std::vector<double>       where(size());
+        std::vector<unsigned int> points(size());
+        for (unsigned int c = 0; c < size(); ++c)
+          {
+            const auto &nodes = model->nodes();
+            for (const auto &dofs : nodes)
+              where[c] += x[c][dofs[0]] / nodes.size();
+            where[c] = wrap_into_segment(Point<3>(where[c], 0., 0.), period)[0];
+            points[c] = nodes.size();
+          }
+        const std::vector<unsigned int> lost = cell_owners.place(where, points);
+        ++n_stiffness_changes;
+        if (!lost.empty())
+          stiffnesses.clear();
+        // The model stays with every rank, without the data of an owner.
+        if (std::find(lost.begin(), lost.end(), 0u) != lost.end())
+          model->forget_owner_data();
       }
-    const std::vector<unsigned int> lost = cell_owners.place(where, points);
-    ++n_stiffness_changes;
-    if (!lost.empty())
-      stiffnesses.clear();
-    // The model stays with every rank, without the data of an owner.
-    for (const unsigned int c : lost)
-      if (c == 0)
-        model->forget_owner_data();
+    keep_own_membranes();
+  }
+
+  void
+  CellPopulation::keep_own_membranes()
+  {
     for (unsigned int c = 1; c < size(); ++c)
       if (cell_owners.owns(c) && !holds(c))
         cell_membranes[c] = make_membrane(c, reference_meshes[c]);

@@ -60,7 +60,11 @@ namespace rbc_ifem
             domain.drive,
             parameters.time.plasma_time_step(),
             timer)
-    , cells(domain.placements, parameters.cells, parameters.membrane)
+    , cells(domain.placements,
+            parameters.cells,
+            parameters.membrane,
+            communicator,
+            domain.period)
     , uptake(parameters.geometry,
              parameters.mesh,
              parameters.diffusion,
@@ -120,29 +124,25 @@ namespace rbc_ifem
   void
   IFEMSimulation::setup()
   {
+    // The squeeze shares the cells out as their forces are (by owner, or
+    // within each membrane when there are fewer cells than ranks) and
+    // squeezes each alone, along the same L-BFGS path on any number of
+    // ranks (to round-off, with the membranes shared).
     if (parameters.immersed.squeeze_into_lumen)
       {
         TimerOutput::Scope  scope(timer, "squeeze into lumen");
-        const CellOwners    squeezers(communicator);
         const WallRepulsion wall(
           cells.membranes(),
           *domain.wall_radius,
           RepulsivePotential(parameters.interactions.wall_pressure,
                              parameters.interactions.wall_range),
-          squeezers);
+          cells.owners());
         std::vector<Vector<double>> x      = cells.positions();
         const unsigned int          stages = wall.squeeze_into_lumen(x);
         cells.set_positions(x);
         pcout << "  squeezed into the lumen in " << stages << " stages"
               << std::endl;
       }
-    // The membranes are replicated; from here on their forces and stiffness
-    // are shared out over the ranks (by cell, or within each membrane when
-    // there are fewer cells than ranks), which compute them together.
-    // The squeeze above shares the cells out (cell c on rank c modulo the
-    // ranks) but squeezes each on one rank alone, so that its L-BFGS path,
-    // and the squeezed shape, are the same for any number of ranks.
-    cells.share_work(communicator, domain.period);
     std::vector<std::shared_ptr<const Triangulation<3>>> coarser_meshes;
     {
       TimerOutput::Scope          scope(timer, "fluid mesh");

@@ -54,43 +54,44 @@ namespace rbc_ifem
    * that order. The forces on the points are the sum of the CellForce
    * objects the population holds.
    *
-   * Every rank knows every cell's positions, but once the cells have owners
-   * (share_work()) a rank keeps the reference mesh and the Membrane only of
-   * the cells it owns: it makes them when it takes a cell over and drops
-   * them when it hands the cell on. What it needs of another cell depends on
-   * the reference shape alone, not on where the cell was placed (the
-   * numbering of its nodes, its reference areas, its normals at given
-   * positions), and it takes that from the first cell's Membrane, which
+   * Every rank knows every cell's positions, but a rank keeps the reference
+   * mesh and the Membrane only of the cells it owns: it makes them when it
+   * takes a cell over and drops them when it hands the cell on. What it needs
+   * of another cell depends on the reference shape alone, not on where the cell
+   * was placed (the numbering of its nodes, its reference areas, its normals at
+   * given positions), and it takes that from the first cell's Membrane, which
    * every rank keeps: the model of membranes().
    */
   class CellPopulation
   {
   public:
+    /**
+     * The cells at @p placements, their mechanics shared out over the ranks
+     * of @p communicator, so that every rank must then compute the forces
+     * and the stiffness together. With at least as many cells as ranks,
+     * each cell has an owner rank (CellOwners) that computes its forces and
+     * stiffness alone, added up over the ranks in one reduction, and keeps
+     * its Membrane; with fewer, every rank keeps every cell and takes a
+     * share of every membrane's cell loops (Membrane::share_work()). The
+     * owners go by where the cells are along the capillary, in a periodic
+     * segment of length @p period if there is one (each cell's mean point
+     * wrapped into it), and are chosen again whenever the cells move. Each
+     * rank makes every cell once, one at a time, for its reference
+     * positions and measures, and keeps its own cells' only.
+     */
     CellPopulation(const std::vector<CellPlacement> &placements,
                    const CellParameters             &cells,
-                   const MembraneParameters         &membrane);
+                   const MembraneParameters         &membrane,
+                   const MPI_Comm               communicator = MPI_COMM_SELF,
+                   const std::optional<double> &period       = {});
 
     /// Not copied or moved: its cell forces refer to its membranes.
     CellPopulation(const CellPopulation &) = delete;
     CellPopulation &
     operator=(const CellPopulation &) = delete;
 
-    /**
-     * Share the cells' mechanics out over the ranks of @p comm, so that
-     * every rank must then compute the forces and the stiffness together.
-     * With at least as many cells as ranks, each cell has an owner rank
-     * (CellOwners) that computes its forces and stiffness alone, added up
-     * over the ranks in one reduction; with fewer, every rank takes a share
-     * of every membrane's cell loops (Membrane::share_work()). The owners
-     * go by where the cells are along the capillary, in a periodic segment
-     * of length @p period if there is one (each cell's mean point wrapped
-     * into it), and are chosen again whenever the cells move.
-     */
-    void
-    share_work(const MPI_Comm comm, const std::optional<double> &period = {});
-
-    /// Which rank owns which cell (share_work(); with fewer cells than
-    /// ranks every rank computes every cell, as on one rank).
+    /// Which rank owns which cell (with fewer cells than ranks every rank
+    /// computes every cell, as on one rank).
     const CellOwners &
     owners() const;
 
@@ -209,7 +210,7 @@ namespace rbc_ifem
     holds(const unsigned int c) const;
 
     /// Move every point by Δt v, the last of the six steps, and choose the
-    /// cells' owners anew (collective after share_work()); a stiffness
+    /// cells' owners anew (collective on a communicator); a stiffness
     /// taken before is gone.
     void
     move(const std::vector<Tensor<1, 3>> &velocities, const double time_step);
@@ -289,6 +290,10 @@ namespace rbc_ifem
     set_positions(const std::vector<Vector<double>> &positions);
 
   private:
+    /// Share the cells out over the ranks of @p comm (the constructor).
+    void
+    share_work(const MPI_Comm comm);
+
     /**
      * Make cell @p c's reference mesh and Membrane (the model's numbering
      * shared) into @p mesh and return the Membrane: what the constructor does
@@ -300,12 +305,17 @@ namespace rbc_ifem
 
     /**
      * Give the cells to owners by where they are now (CellOwners::place()),
-     * after share_work(). A rank that hands a cell over drops its mesh and
-     * Membrane, one that takes a cell over makes them; the stiffness, taken
-     * with the owners before, is dropped.
+     * if they are shared out, and keep the Membranes of this rank's cells
+     * (keep_own_membranes()); the stiffness, taken with the owners before,
+     * is dropped when a cell changed owner.
      */
     void
     place_owners();
+
+    /// Make the Membranes of the cells this rank owns and does not hold,
+    /// drop those of the cells it holds and does not own (but the model).
+    void
+    keep_own_membranes();
 
     /// The output of cell @p c (write_vtu()) as the patches of @p data_out.
     void
@@ -347,7 +357,7 @@ namespace rbc_ifem
     double              largest_spacing = 0.;
     /// Declared before the forces, which hold it.
     CellOwners cell_owners;
-    /// The period of the segment the owners are placed in (share_work()).
+    /// The period of the segment the owners are placed in.
     std::optional<double>                   period;
     std::vector<Vector<double>>             x;
     std::vector<Vector<double>>             forces;

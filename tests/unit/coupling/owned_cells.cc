@@ -1,15 +1,15 @@
 // mpirun: 2 3 4
 
-// The cells' mechanics computed by their owners (CellPopulation::share_work(),
-// CellOwners): five Evans-Fung cells at randomly perturbed positions, all
-// energy terms on, pressed together in a periodic segment so that every cell
-// touches its neighbours (the last the first across the end) and the wall,
-// give every rank the energy, the forces, the products with the tangent
-// stiffness and its diagonal, and the gaps, of the same population computed
-// alone, to round-off (the gaps exactly). The ranks own runs of neighbours,
-// so the pairs where two runs meet (and the pair across the end) are split
-// between two owners, each seeing the other's cell as a ghost. Then the
-// train moves along the segment in steps of half a spacing until cells have
+// The cells' mechanics computed by their owners (CellPopulation on a
+// communicator, CellOwners): five Evans-Fung cells at randomly perturbed
+// positions, all energy terms on, pressed together in a periodic segment so
+// that every cell touches its neighbours (the last the first across the end)
+// and the wall, give every rank the energy, the forces, the products with the
+// tangent stiffness and its diagonal, and the gaps, of the same population
+// computed alone, to round-off (the gaps exactly). The ranks own runs of
+// neighbours, so the pairs where two runs meet (and the pair across the end)
+// are split between two owners, each seeing the other's cell as a ghost. Then
+// the train moves along the segment in steps of half a spacing until cells have
 // crossed the end and gone to other ranks: at every step every cell has one
 // owner, the owned points add up, and the forces and K v still equal those
 // computed alone. Last, squeezed into a narrower capillary by their owners,
@@ -260,8 +260,8 @@ main(int argc, char *argv[])
   CellParameters cell_parameters;
   cell_parameters.surface_refinements = 2;
   CellPopulation alone(train(), cell_parameters, every_term());
-  CellPopulation owned(train(), cell_parameters, every_term());
-  owned.share_work(MPI_COMM_WORLD, period);
+  CellPopulation owned(
+    train(), cell_parameters, every_term(), MPI_COMM_WORLD, period);
   for (CellPopulation *cells : {&alone, &owned})
     add_interaction_forces(*cells, every_interaction(), wall_radius, period);
 

@@ -106,6 +106,42 @@ per_step() {
     awk '{printf "%.0f", $1}'
 }
 
+# cells_difference BEFORE AFTER: the largest difference of a column of
+# AFTER/cells.csv from BEFORE's, over the column's largest value, as
+# 1.2e-07: columns of round-off about zero (below 1e-6, such as a centred
+# cell's y and z) left out, the inclination (an axis's angle, in
+# (-π/2, π/2]) compared modulo π.
+cells_difference() {
+  /usr/bin/python3 - "$1/cells.csv" "$2/cells.csv" <<'PY'
+import csv, math, sys
+rows = [list(csv.reader(open(f))) for f in sys.argv[1:]]
+worst = 0.0
+for column, name in enumerate(rows[0][0]):
+    try:
+        a = [float(r[column]) for r in rows[0][1:]]
+        b = [float(r[column]) for r in rows[1][1:]]
+    except ValueError:
+        continue
+    scale = max(abs(v) for v in a + b)
+    if scale < 1e-6:  # round-off about zero
+        continue
+    for x, y in zip(a, b):
+        d = abs(x - y)
+        if name == "inclination":
+            d = min(d, math.pi - d)
+        worst = max(worst, d / scale)
+print(f"{worst:.1e}")
+PY
+}
+
+# load_balance LOG WHAT: the least and most per rank of WHAT ("membrane
+# points" or "fluid cells") in the program's line "per rank, least to most
+# over P: ..., A-B membrane points in its C-D fluid cells" of LOG, as A-B.
+load_balance() {
+  sed -n "s/.*per rank, least to most over [0-9]*: .* \([0-9]*-[0-9]*\) $2.*/\1/p" "$1" |
+    head -1
+}
+
 # The sections of a DM solve that hold the others (the level set and the
 # surface points are in setup, the sparsity in DoFs and constraints, the
 # AMG setup in assemble), without the output.

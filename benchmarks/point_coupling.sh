@@ -31,24 +31,7 @@ run() {
 run before "$before"
 run after "$after"
 
-# The largest difference of a column of after/cells.csv from before's, over
-# the column's largest value.
-difference=$(/usr/bin/python3 - <<'PY'
-import csv
-rows = [list(csv.reader(open(f + "/cells.csv"))) for f in ("before", "after")]
-worst = 0.0
-for column in range(len(rows[0][0])):
-    try:
-        a = [float(r[column]) for r in rows[0][1:]]
-        b = [float(r[column]) for r in rows[1][1:]]
-    except ValueError:
-        continue
-    scale = max(abs(v) for v in a + b)
-    if scale > 1e-9:  # not a column of round-off about zero
-        worst = max(worst, max(abs(x - y) for x, y in zip(a, b)) / scale)
-print(f"{worst:.1e}")
-PY
-)
+difference=$(cells_difference before after)
 
 results_table point_coupling ranks cells program "step [s]" \
   "load L v [s per step]" "collectives per step" "bytes sent per step" \

@@ -146,9 +146,10 @@ namespace rbc_ifem
     parallel::fullydistributed::Triangulation<3>                    &fine,
     const std::function<void(Triangulation<3> &)>                   &coarse,
     const std::function<void(Triangulation<3> &, const MeshZone &)> &refine,
-    const bool                                                       periodic)
+    const bool                                                       periodic,
+    const std::vector<double>                                       &weights)
   {
-    distribute(fine, coarse, refine, periodic, 0);
+    distribute(fine, coarse, refine, periodic, 0, weights);
     const unsigned int n_levels = fine.n_global_levels();
     std::vector<std::shared_ptr<const Triangulation<3>>> levels;
     for (unsigned int l = 0; l + 1 < n_levels; ++l)
@@ -156,7 +157,7 @@ namespace rbc_ifem
         auto level =
           std::make_shared<parallel::fullydistributed::Triangulation<3>>(
             fine.get_communicator());
-        distribute(*level, coarse, refine, periodic, n_levels - 1 - l);
+        distribute(*level, coarse, refine, periodic, n_levels - 1 - l, weights);
         levels.push_back(level);
       }
     return levels;

@@ -148,22 +148,29 @@ namespace rbc_ifem
       TimerOutput::Scope          scope(timer, "fluid mesh");
       const std::vector<Point<3>> band =
         points_in_segment(cells.points(), domain.period);
-      coarser_meshes = create_distributed_mesh_hierarchy(
+      const auto coarse = [&](Triangulation<3> &serial) {
+        domain.create_mesh(serial);
+        if (domain.period)
+          add_end_periodicity(serial);
+      };
+      const auto refine = [&](Triangulation<3> &serial, const MeshZone &zone) {
+        zone.refine_global(serial, domain.n_global_refinements);
+        refine_near_points(serial,
+                           band,
+                           parameters.mesh.band_width,
+                           parameters.mesh.fluid_band_refinements,
+                           zone);
+      };
+      // Slabs of equal fine cells, not equal coarse cells: the band makes
+      // the mesh finer where the cells are, all in one part of the
+      // capillary in a clustered layout.
+      const bool periodic = domain.period.has_value();
+      coarser_meshes      = create_distributed_mesh_hierarchy(
         triangulation,
-        [&](Triangulation<3> &serial) {
-          domain.create_mesh(serial);
-          if (domain.period)
-            add_end_periodicity(serial);
-        },
-        [&](Triangulation<3> &serial, const MeshZone &zone) {
-          zone.refine_global(serial, domain.n_global_refinements);
-          refine_near_points(serial,
-                             band,
-                             parameters.mesh.band_width,
-                             parameters.mesh.fluid_band_refinements,
-                             zone);
-        },
-        domain.period.has_value());
+        coarse,
+        refine,
+        periodic,
+        fine_cells_per_coarse_cell(communicator, coarse, refine, periodic));
     }
     fluid.setup(coarser_meshes);
     coupling = std::make_unique<ImmersedCoupling>(triangulation,

@@ -51,14 +51,18 @@ namespace rbc_ifem
    * create_description_from_triangulation() for that rank). Each coarser
    * level is the rank's part coarsened once more, in the same slabs, so
    * that the transfers between levels stay within a rank. The capillary's
-   * manifolds are attached as create_capillary_mesh() does.
+   * manifolds are attached as create_capillary_mesh() does. With
+   * @p weights, one per coarse cell (such as fine_cells_per_coarse_cell()),
+   * the slabs hold about equal weights instead of equal numbers of coarse
+   * cells (MeshZone), the same slabs on every level.
    */
   std::vector<std::shared_ptr<const Triangulation<3>>>
   create_distributed_mesh_hierarchy(
     parallel::fullydistributed::Triangulation<3>                    &fine,
     const std::function<void(Triangulation<3> &)>                   &coarse,
     const std::function<void(Triangulation<3> &, const MeshZone &)> &refine,
-    const bool                                                       periodic);
+    const bool                                                       periodic,
+    const std::vector<double> &weights = {});
 
   /**
    * Make @p mesh the fully distributed mesh that @p coarse and @p refine

@@ -7,7 +7,9 @@
 // whole on one rank, cell for cell: the same number of active cells, each owned
 // once (the sums of the owned cells' centres and levels over the ranks are
 // the whole mesh's), and every coarser multigrid level the whole mesh
-// coarsened as often. On 3 and 4 ranks a zone leaves coarse cells out.
+// coarsened as often. On 3 and 4 ranks a zone leaves coarse cells out. Built
+// again with slabs of equal fine cells (fine_cells_per_coarse_cell()), the
+// mesh is the same and the largest rank's share is near 1/P.
 
 #include <rbc_ifem/geometry/capillary_mesh.h>
 #include <rbc_ifem/geometry/mesh_hierarchy.h>
@@ -18,6 +20,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <cmath>
+#include <iostream>
 
 using namespace rbc_ifem;
 
@@ -98,6 +101,44 @@ namespace
                  whole_sums[i],
                  1e-9 * (1. + std::abs(whole_sums[i])));
   }
+
+  /// The largest fraction of @p mesh's active cells that one rank owns.
+  double
+  largest_share(const Triangulation<3> &mesh)
+  {
+    return Utilities::MPI::max(sums(mesh)[0], MPI_COMM_WORLD) /
+           mesh.n_global_active_cells();
+  }
+
+  /// @p fine and its coarser @p levels against @p whole and @p whole
+  /// coarsened as often, cell for cell.
+  void
+  check_hierarchy(
+    Checker                                                    &check,
+    const std::string                                          &what,
+    const parallel::fullydistributed::Triangulation<3>         &fine,
+    const std::vector<std::shared_ptr<const Triangulation<3>>> &levels,
+    const Triangulation<3>                                     &whole)
+  {
+    check.near(what + "global active cells",
+               fine.n_global_active_cells(),
+               whole.n_active_cells(),
+               0.);
+    compare(check, what + "fine mesh", fine, whole);
+    check.near(what + "levels", levels.size() + 1, whole.n_levels(), 0.);
+    for (unsigned int l = 0; l < levels.size(); ++l)
+      {
+        Triangulation<3> coarser(
+          Triangulation<3>::limit_level_difference_at_vertices);
+        make_coarse(coarser);
+        refine(coarser, MeshZone());
+        coarser.coarsen_global(levels.size() - l);
+        compare(check,
+                what + "level " + std::to_string(l),
+                *levels[l],
+                coarser);
+      }
+  }
 } // namespace
 
 int
@@ -107,28 +148,40 @@ main(int argc, char **argv)
   Checker                          check;
   const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
 
-  parallel::fullydistributed::Triangulation<3> fine(MPI_COMM_WORLD);
-  const auto                                   levels =
-    create_distributed_mesh_hierarchy(fine, make_coarse, refine, true);
-
   Triangulation<3> whole(Triangulation<3>::limit_level_difference_at_vertices);
   make_coarse(whole);
   refine(whole, MeshZone());
-  check.near("global active cells",
-             fine.n_global_active_cells(),
-             whole.n_active_cells(),
-             0.);
-  compare(check, "fine mesh", fine, whole);
-  check.near("levels", levels.size() + 1, whole.n_levels(), 0.);
-  for (unsigned int l = 0; l < levels.size(); ++l)
-    {
-      Triangulation<3> coarser(
-        Triangulation<3>::limit_level_difference_at_vertices);
-      make_coarse(coarser);
-      refine(coarser, MeshZone());
-      coarser.coarsen_global(levels.size() - l);
-      compare(check, "level " + std::to_string(l), *levels[l], coarser);
-    }
+  parallel::fullydistributed::Triangulation<3> fine(MPI_COMM_WORLD);
+  check_hierarchy(
+    check,
+    "",
+    fine,
+    create_distributed_mesh_hierarchy(fine, make_coarse, refine, true),
+    whole);
+
+  // Slabs of equal fine cells: the band at one end makes the slabs of equal
+  // coarse cells unequal.
+  parallel::fullydistributed::Triangulation<3> balanced(MPI_COMM_WORLD);
+  check_hierarchy(
+    check,
+    "balanced, ",
+    balanced,
+    create_distributed_mesh_hierarchy(
+      balanced,
+      make_coarse,
+      refine,
+      true,
+      fine_cells_per_coarse_cell(MPI_COMM_WORLD, make_coarse, refine, true)),
+    whole);
+  // Slabs of equal coarse cells give the largest rank 1.32, 1.86 and 2.38
+  // times its share on 2, 3 and 4 ranks.
+  const double unbalanced = largest_share(fine) * n_ranks;
+  const double shared     = largest_share(balanced) * n_ranks;
+  if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+    std::cout << "largest rank's cells over 1/P of them: " << unbalanced
+              << " in slabs of equal coarse cells, " << shared << " balanced"
+              << std::endl;
+  check.at_most("largest rank's cells over 1/P of them, balanced", shared, 1.3);
 
   Triangulation<3> coarse;
   make_coarse(coarse);

@@ -16,8 +16,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 source "$(dirname "$0")/common.sh"
-set -- "$1" "$2" "${3:-2}" "${4:-8}"
-before_after_setup "$@"
+default_cells=8 before_after_setup "$@"
 
 run() {
   mpirun --oversubscribe -np "$ranks" "$2" "$here/prm/default.prm" \

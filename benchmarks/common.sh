@@ -15,12 +15,13 @@ benchmark_setup() {
 
 # before_after_setup "$@": for a script that runs two programs side by
 # side, BEFORE AFTER [RANKS] [CELLS]: sets before and after (their paths),
-# ranks (default 2) and cells (default 64), then benchmark_setup.
+# ranks (default 2) and cells (default $default_cells if set, else 64),
+# then benchmark_setup.
 before_after_setup() {
   [ $# -ge 2 ] || { echo "usage: $0 BEFORE AFTER [RANKS] [CELLS]" >&2; exit 2; }
   before=$(realpath "$1")
   after=$(realpath "$2")
-  cells=${4:-64}
+  cells=${4:-${default_cells:-64}}
   benchmark_setup "$after" "${3:-2}"
 }
 

@@ -11,9 +11,8 @@
 # to the end of step 3), rank 0's seconds per step in the load L v inside
 # the FGMRES iterations and V-cycles ("coupling: implicit force load"), the
 # largest rank's collective calls and point-to-point bytes per step, and
-# how far AFTER's cells.csv is from BEFORE's (the largest difference of a
-# column over its largest value, columns of round-off about zero, below
-# 1e-9, left out). The rows go to
+# how far AFTER's cells.csv is from BEFORE's (benchmarks/common.sh,
+# cells_difference). The rows go to
 # doc/results/benchmarks/point_coupling.csv (benchmarks/common.sh).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)

@@ -43,20 +43,29 @@ namespace rbc_ifem
     , reference_meshes(placements.size())
     , period(period)
   {
+    // With at least as many cells as ranks each cell has one owner, which
+    // computes it alone; with fewer, one owner per cell would leave ranks
+    // idle (a single cell on 2 ranks: its stiffness took twice as long),
+    // so every rank keeps and computes every cell, each membrane's cell
+    // loops split over all ranks.
+    const bool fewer_cells_than_ranks =
+      placements.size() < Utilities::MPI::n_mpi_processes(communicator);
+    if (!fewer_cells_than_ranks)
+      cell_owners = CellOwners(communicator);
     // Every cell is the one reference shape placed elsewhere: they share
     // the first cell's numbering and stiffness pattern. Each is made here
-    // for its reference positions and measures and dropped again, so that
-    // no rank holds every cell's at once; the first stays as the model.
+    // for its reference positions and measures; with the cells shared out
+    // it is dropped again (its owner makes it anew, place_owners()), so
+    // that no rank holds every cell's at once. The first stays as the model.
     for (unsigned int c = 0; c < placements.size(); ++c)
       {
         std::unique_ptr<Triangulation<2, 3>> mesh;
         const std::shared_ptr<Membrane>      made = make_membrane(c, mesh);
         if (c == 0)
-          {
-            model               = made;
-            reference_meshes[0] = std::move(mesh);
-          }
-        cell_membranes.push_back(model);
+          model = made;
+        if (c == 0 || !cell_owners.shared())
+          reference_meshes[c] = std::move(mesh);
+        cell_membranes.push_back(holds(c) ? made : model);
         x.push_back(made->reference_positions());
         forces.emplace_back(x.back().size());
         n_membrane_points += made->nodes().size();
@@ -67,7 +76,10 @@ namespace rbc_ifem
                    longest_edge(made->get_dof_handler().get_triangulation()) /
                      made->get_dof_handler().get_fe().degree);
       }
-    share_work(communicator);
+    place_owners();
+    if (fewer_cells_than_ranks)
+      for (const std::shared_ptr<Membrane> &membrane : cell_membranes)
+        membrane->share_work(communicator);
     add_force(
       std::make_unique<MembraneElasticity>(cell_membranes, cell_owners));
   }
@@ -89,22 +101,6 @@ namespace rbc_ifem
   CellPopulation::holds(const unsigned int c) const
   {
     return reference_meshes[c] != nullptr;
-  }
-
-  void
-  CellPopulation::share_work(const MPI_Comm comm)
-  {
-    // With at least as many cells as ranks each cell has one owner, which
-    // computes it alone; with fewer, one owner per cell would leave ranks
-    // idle (a single cell on 2 ranks: its stiffness took twice as long),
-    // so every rank keeps and computes every cell, each membrane's cell
-    // loops split over all ranks.
-    if (size() >= Utilities::MPI::n_mpi_processes(comm))
-      cell_owners = CellOwners(comm);
-    place_owners();
-    if (!cell_owners.shared())
-      for (const std::shared_ptr<Membrane> &membrane : cell_membranes)
-        membrane->share_work(comm);
   }
 
   const CellOwners &
@@ -520,11 +516,13 @@ namespace rbc_ifem
     /// MembraneSurfaces view keeps alive.
     struct CurrentSurfaces
     {
-      CurrentSurfaces(std::vector<std::unique_ptr<Triangulation<2, 3>>> owned,
-                      const std::vector<const Membrane *> &membranes,
-                      const std::vector<Vector<double>>   &positions)
+      CurrentSurfaces(
+        std::vector<std::unique_ptr<Triangulation<2, 3>>> owned,
+        const std::function<std::shared_ptr<const Membrane>(unsigned int)>
+                                          &membrane_of,
+        const std::vector<Vector<double>> &positions)
         : owned(std::move(owned))
-        , mapping(meshes(), membranes, positions)
+        , mapping(meshes(), membrane_of, positions)
       {}
 
       std::vector<const Triangulation<2, 3> *>
@@ -539,23 +537,34 @@ namespace rbc_ifem
       const std::vector<std::unique_ptr<Triangulation<2, 3>>> owned;
       const DeformedSurfaceMapping                            mapping;
     };
+
+    /// A Membrane made for a while, with the reference mesh it lives on
+    /// (declared first, so destroyed last).
+    struct MadeMembrane
+    {
+      std::unique_ptr<Triangulation<2, 3>> mesh;
+      std::shared_ptr<Membrane>            membrane;
+    };
   } // namespace
 
   MembraneSurfaces
   CellPopulation::membrane_surfaces() const
   {
     // The mapping curves each surface by its cell's reference shape: it
-    // needs every cell's own Membrane while it is made, and this rank makes
-    // those it does not keep for that time only.
-    std::vector<std::unique_ptr<Triangulation<2, 3>>> meshes(size());
-    std::vector<std::shared_ptr<Membrane>>            made(size());
-    std::vector<const Membrane *>                     membranes;
-    for (unsigned int c = 0; c < size(); ++c)
-      membranes.push_back(holds(c) ?
-                            cell_membranes[c].get() :
-                            (made[c] = make_membrane(c, meshes[c])).get());
+    // needs each cell's own Membrane while it takes that surface's support
+    // points, and this rank makes those it does not keep one at a time.
+    const auto membrane_of =
+      [this](const unsigned int c) -> std::shared_ptr<const Membrane> {
+      if (holds(c))
+        return cell_membranes[c];
+      const auto made = std::make_shared<MadeMembrane>();
+      made->membrane  = make_membrane(c, made->mesh);
+      return std::shared_ptr<const Membrane>(made, made->membrane.get());
+    };
     const auto current =
-      std::make_shared<const CurrentSurfaces>(current_surfaces(), membranes, x);
+      std::make_shared<const CurrentSurfaces>(current_surfaces(),
+                                              membrane_of,
+                                              x);
     return MembraneSurfaces(current->meshes(), current->mapping, current);
   }
 

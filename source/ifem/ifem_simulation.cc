@@ -671,11 +671,12 @@ namespace rbc_ifem
   {
     cells.set_positions(last_good);
     write_tables();
-    if (Utilities::MPI::this_mpi_process(communicator) == 0)
-      cells.write_vtu(parameters.output_directory,
-                      "last_good_cell",
-                      record.step,
-                      frame_data());
+    // Each cell by its owner, which alone keeps its membrane.
+    cells.write_vtu(parameters.output_directory,
+                    "last_good_cell",
+                    record.step,
+                    frame_data(),
+                    communicator);
     const bool full_stop = !why.empty() && why.back() == '.';
     throw SolverFailure(
       "step " + std::to_string(record.step + (after_step ? 0 : 1)) +

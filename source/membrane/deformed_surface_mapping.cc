@@ -15,9 +15,26 @@ namespace rbc_ifem
     const std::vector<const Triangulation<2, 3> *> &surfaces,
     const std::vector<const Membrane *>            &membranes,
     const std::vector<Vector<double>>              &positions)
-    : MappingQ<2, 3>(degree)
+    : DeformedSurfaceMapping(
+        surfaces,
+        [&](const unsigned int c) {
+          AssertIndexRange(c, membranes.size());
+          // Not owned: the caller's membranes outlive the making.
+          return std::shared_ptr<const Membrane>(
+            std::shared_ptr<const Membrane>(), membranes[c]);
+        },
+        positions)
   {
     AssertDimension(surfaces.size(), membranes.size());
+  }
+
+  DeformedSurfaceMapping::DeformedSurfaceMapping(
+    const std::vector<const Triangulation<2, 3> *> &surfaces,
+    const std::function<std::shared_ptr<const Membrane>(unsigned int)>
+                                      &membrane_of,
+    const std::vector<Vector<double>> &positions)
+    : MappingQ<2, 3>(degree)
+  {
     AssertDimension(surfaces.size(), positions.size());
     // MappingQ orders its support points as FE_Q numbers its nodes:
     // vertices, the lines' interior points, the cell's. (At degree 2 every
@@ -27,12 +44,13 @@ namespace rbc_ifem
     auto points = std::make_shared<SupportPoints>();
     for (unsigned int c = 0; c < surfaces.size(); ++c)
       {
-        const DoFHandler<2, 3> &dof_handler = membranes[c]->get_dof_handler();
-        const FiniteElement<2, 3> &fe       = dof_handler.get_fe();
+        const std::shared_ptr<const Membrane> membrane = membrane_of(c);
+        const DoFHandler<2, 3>    &dof_handler = membrane->get_dof_handler();
+        const FiniteElement<2, 3> &fe          = dof_handler.get_fe();
         AssertDimension(surfaces[c]->n_active_cells(),
                         dof_handler.get_triangulation().n_active_cells());
         Vector<double> displacement(positions[c]);
-        displacement -= membranes[c]->reference_positions();
+        displacement -= membrane->reference_positions();
         std::vector<std::vector<Point<3>>> &cell_points =
           (*points)[surfaces[c]];
         cell_points.resize(surfaces[c]->n_active_cells());

@@ -76,8 +76,9 @@ namespace rbc_ifem
      * owners go by where the cells are along the capillary, in a periodic
      * segment of length @p period if there is one (each cell's mean point
      * wrapped into it), and are chosen again whenever the cells move. Each
-     * rank makes every cell once, one at a time, for its reference
-     * positions and measures, and keeps its own cells' only.
+     * rank makes every cell, one at a time, for its reference positions and
+     * measures; with the cells shared out it keeps (makes again) its own
+     * cells' only.
      */
     CellPopulation(const std::vector<CellPlacement> &placements,
                    const CellParameters             &cells,
@@ -290,10 +291,6 @@ namespace rbc_ifem
     set_positions(const std::vector<Vector<double>> &positions);
 
   private:
-    /// Share the cells out over the ranks of @p comm (the constructor).
-    void
-    share_work(const MPI_Comm comm);
-
     /**
      * Make cell @p c's reference mesh and Membrane (the model's numbering
      * shared) into @p mesh and return the Membrane: what the constructor does

@@ -195,7 +195,9 @@ namespace rbc_ifem
      * against it (find_equilibrium()). @p x, one Vector per cell, is
      * replaced by the squeezed positions. Each cell is squeezed by its
      * owner alone and the positions shared in one sum (collective), the
-     * same as on one rank. Returns the number of stages of all cells.
+     * same as on one rank (to round-off where the membranes' work is
+     * shared, with fewer cells than ranks: there every rank squeezes every
+     * cell, together). Returns the number of stages of all cells.
      */
     unsigned int
     squeeze_into_lumen(std::vector<Vector<double>> &x) const;

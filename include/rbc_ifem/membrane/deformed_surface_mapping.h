@@ -6,6 +6,7 @@
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/vector.h>
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <vector>
@@ -45,6 +46,18 @@ namespace rbc_ifem
       const std::vector<const Triangulation<2, 3> *> &surfaces,
       const std::vector<const Membrane *>            &membranes,
       const std::vector<Vector<double>>              &positions);
+
+    /**
+     * The same with surface c's membrane given by @p membrane_of(c), asked
+     * for one c at a time: each need live only while its surface's support
+     * points are taken, so that a caller can make the membranes it does not
+     * keep one by one.
+     */
+    DeformedSurfaceMapping(
+      const std::vector<const Triangulation<2, 3> *> &surfaces,
+      const std::function<std::shared_ptr<const Membrane>(unsigned int)>
+                                        &membrane_of,
+      const std::vector<Vector<double>> &positions);
 
     std::unique_ptr<Mapping<2, 3>>
     clone() const override;

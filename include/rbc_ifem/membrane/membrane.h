@@ -477,8 +477,9 @@ namespace rbc_ifem
       std::vector<std::vector<double>>       jacobian;
     };
     /// Made when an energy or measure first needs it (reference_metric()),
-    /// and dropped after the constructor's measures: a rank that holds a
-    /// cell without owning it never measures it, and does not keep it.
+    /// and dropped after the constructor's measures: a membrane made and
+    /// kept for what depends on its shape alone (the model of a
+    /// CellPopulation) makes it on its first measure.
     mutable ReferenceMetric metric;
 
     /// N_a and ∂N_a/∂ξ at the quadrature points of the unit cell.

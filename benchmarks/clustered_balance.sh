@@ -34,10 +34,8 @@ results_table clustered_balance ranks cells program "fluid cells per rank" \
   "membrane points per rank" "step [s]" "peak memory per rank [MB]" \
   "cells.csv difference"
 for name in before after; do
-  step=$(awk -v a="$(wall_after $name.log 1)" -v b="$(wall_after $name.log 3)" \
-    'BEGIN {printf "%.2f", (b - a) / 2}')
-  memory=$(sed -n 's/.*peak memory: \([0-9.]*\) MB.*/\1/p' "$name.log")
   results_row "$ranks" "$cells" "$name" "$(load_balance $name.log "fluid cells")" \
-    "$(load_balance $name.log "membrane points")" "$step" "$memory" \
+    "$(load_balance $name.log "membrane points")" "$(step_seconds $name.log)" \
+    "$(peak_memory $name.log)" \
     "$([ $name = after ] && echo "$difference")"
 done

@@ -98,6 +98,17 @@ wall_after() {
     awk '{print ($2 == "min") ? 60 * $1 + $3 : $1}'
 }
 
+# step_seconds LOG: seconds per step of a 3-step run, from the end of step
+# 1 to the end of step 3 over 2 (the set-up and the first step's one-off
+# work left out), as 12.34.
+step_seconds() {
+  awk -v a="$(wall_after "$1" 1)" -v b="$(wall_after "$1" 3)" 'BEGIN {printf "%.2f", (b - a) / 2}'
+}
+
+# peak_memory LOG: the largest rank's peak memory [MB] of the run's last
+# line "peak memory: X MB ...".
+peak_memory() { sed -n 's/.*peak memory: \([0-9.e+]*\) MB.*/\1/p' "$1"; }
+
 # per_step LOG WHAT: the largest rank's WHAT per step ("collective MPI calls"
 # or "bytes sent") in the program's line "per rank and step, least to most
 # over P: A-B collective MPI calls, ..., E-F bytes sent" of LOG

@@ -34,7 +34,7 @@ results_table fluid_scaling ranks DoFs "peak memory per rank [MB]" "step [s]" "F
 for n in 1 2 4; do
   mpirun --oversubscribe -np "$n" "$exe" run.prm > log.txt
   dofs=$(sed -n 's/.* \([0-9]*\) DoFs (.*/\1/p' log.txt)
-  memory=$(sed -n 's/.*peak memory: \([0-9.]*\) MB.*/\1/p' log.txt)
+  memory=$(peak_memory log.txt)
   # the second step's wall time, from the progress lines' running wall clock
   step=$(sed -n 's/.*\[wall \([^],]*\).*/\1/p' log.txt | awk '
     { t = 0; for (i = 1; i < NF; i += 2) t += $i * ($(i + 1) == "h" ? 3600 : $(i + 1) == "min" ? 60 : 1) }

@@ -29,7 +29,7 @@ end
 PRM
   mpirun -np "$ranks" "$exe" run.prm > log.txt
   read -r fluid_cells diffusion_cells <<<"$(sed -n 's/.*fluid mesh: \([0-9]*\) cells, diffusion mesh: \([0-9]*\) cells.*/\1 \2/p' log.txt)"
-  memory=$(sed -n 's/.*peak memory: \([0-9.]*\) MB.*/\1/p' log.txt)
+  memory=$(peak_memory log.txt)
   seconds() { awk -F, -v s="\"$1\"" '$1 == s {printf "%.2f", $3}' out/timing.csv; }
   results_row "$ranks" "$level" "$surface" "$fluid_cells" "$diffusion_cells" "$(seconds membranes)" \
     "$(seconds "clearance check")" "$(seconds "fluid mesh")" "$(seconds "diffusion mesh")" "$(seconds output)" "${memory%.*}"

@@ -36,8 +36,7 @@ results_table point_coupling ranks cells program "step [s]" \
   "load L v [s per step]" "collectives per step" "bytes sent per step" \
   "cells.csv difference"
 for name in before after; do
-  step=$(awk -v a="$(wall_after $name.log 1)" -v b="$(wall_after $name.log 3)" \
-    'BEGIN {printf "%.2f", (b - a) / 2}')
+  step=$(step_seconds $name.log)
   load=$(awk -v t="$(section_seconds $name "coupling: implicit force load")" \
     'BEGIN {printf "%.2f", t / 3}')
   results_row "$ranks" "$cells" "$name" "$step" "$load" \

@@ -45,9 +45,9 @@ for n in "${cells[@]}"; do
   run "$n"
   dofs=$(sed -n -e 's/.*fluid mesh: [0-9]* cells, \([0-9]*\) DoFs.*/\1/p' \
     -e 's/^  mesh: [0-9]* cells; \([0-9]*\) DoFs.*/\1/p' "log_${n}.txt")
-  step=$(awk -v a="$(wall_after "log_$n.txt" 1)" -v b="$(wall_after "log_$n.txt" 3)" 'BEGIN {printf "%.2f", (b - a) / 2}')
+  step=$(step_seconds "log_$n.txt")
   per_cell=$(awk -v s="$step" -v n="$n" 'BEGIN {if (n > 0) printf "%.3f", s / n}')
-  memory=$(sed -n 's/.*peak memory: \([0-9.]*\) MB.*/\1/p' "log_${n}.txt")
+  memory=$(peak_memory "log_${n}.txt")
   results_row "$ranks" "$n" "$dofs" "$step" "$per_cell" \
     "$(per_step "log_$n.txt" "collective MPI calls")" "$(per_step "log_$n.txt" "bytes sent")" "$memory"
 done

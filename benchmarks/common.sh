@@ -109,9 +109,10 @@ step_seconds() {
 # line "peak memory: X MB ...".
 peak_memory() { sed -n 's/.*peak memory: \([0-9.e+]*\) MB.*/\1/p' "$1"; }
 
-# per_step LOG WHAT: the largest rank's WHAT per step ("collective MPI calls"
-# or "bytes sent") in the program's line "per rank and step, least to most
-# over P: A-B collective MPI calls, ..., E-F bytes sent" of LOG
+# per_step LOG WHAT: the largest rank's WHAT per step ("collective MPI calls",
+# "bytes sent" or "bytes into collectives") in the program's line "per rank
+# and step, least to most over P: A-B collective MPI calls, ..., E-F bytes
+# sent, G-H bytes into collectives" of LOG
 per_step() {
   sed -n 's/.*per rank and step, least to most over [0-9]*: //p' "$1" |
     tr ',' '\n' | sed -n "s/^ *[0-9.e+]*-\([0-9.e+]*\) $2.*/\1/p" |

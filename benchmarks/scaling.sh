@@ -13,9 +13,10 @@
 #  - seconds per step, and per cell: the wall time from the end of step 1
 #    to the end of step 3 over 2 (the progress lines), so that the set-up
 #    and the first step's one-off work do not enter;
-#  - collective MPI calls and point-to-point bytes sent per step, the mean
-#    over the 3 steps of the largest rank, as the program counts them
-#    (MpiTraffic, its line "per rank and step, least to most");
+#  - collective MPI calls, point-to-point bytes sent and the bytes put into
+#    the collective calls per step, the mean over the 3 steps of the largest
+#    rank, as the program counts them (MpiTraffic, its line "per rank and
+#    step, least to most");
 #  - the peak memory of the largest rank (the program's report).
 # The rows go to doc/results/benchmarks/scaling.csv (benchmarks/common.sh).
 set -euo pipefail
@@ -40,7 +41,8 @@ run() {
     "${cells[@]}" >"log_$1.txt"
 }
 results_table scaling ranks cells "fluid DoFs" "step [s]" "step per cell [s]" \
-  "collectives per step" "bytes sent per step" "peak memory per rank [MB]"
+  "collectives per step" "bytes sent per step" "peak memory per rank [MB]" \
+  "bytes into collectives per step"
 for n in "${cells[@]}"; do
   run "$n"
   dofs=$(sed -n -e 's/.*fluid mesh: [0-9]* cells, \([0-9]*\) DoFs.*/\1/p' \
@@ -49,5 +51,6 @@ for n in "${cells[@]}"; do
   per_cell=$(awk -v s="$step" -v n="$n" 'BEGIN {if (n > 0) printf "%.3f", s / n}')
   memory=$(peak_memory "log_${n}.txt")
   results_row "$ranks" "$n" "$dofs" "$step" "$per_cell" \
-    "$(per_step "log_$n.txt" "collective MPI calls")" "$(per_step "log_$n.txt" "bytes sent")" "$memory"
+    "$(per_step "log_$n.txt" "collective MPI calls")" "$(per_step "log_$n.txt" "bytes sent")" "$memory" \
+    "$(per_step "log_$n.txt" "bytes into collectives")"
 done

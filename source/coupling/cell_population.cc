@@ -197,6 +197,34 @@ namespace rbc_ifem
   std::vector<Tensor<1, 3>>
   CellPopulation::compute_forces()
   {
+    add_every_cell_force();
+    // Each rank added its own cells' forces: one reduction for them all.
+    std::vector<double> totals = owned_totals();
+    cell_owners.add_up(forces, make_array_view(totals));
+    take_totals(totals);
+    return per_point(forces);
+  }
+
+  std::vector<Tensor<1, 3>>
+  CellPopulation::compute_owned_forces()
+  {
+    add_every_cell_force();
+    std::vector<double>         totals = owned_totals();
+    std::vector<Vector<double>> no_forces;
+    cell_owners.add_up(no_forces, make_array_view(totals));
+    take_totals(totals);
+    return per_point(forces);
+  }
+
+  bool
+  CellPopulation::forces_finite() const
+  {
+    return all_forces_finite;
+  }
+
+  void
+  CellPopulation::add_every_cell_force()
+  {
     for (Vector<double> &f : forces)
       f = 0.;
     external_force = 0.;
@@ -207,16 +235,30 @@ namespace rbc_ifem
         external_force += report.external_force;
         total_energy += report.energy;
       }
-    // Each rank added its own cells' forces: one reduction for them all.
-    std::vector<double> totals{total_energy,
-                               external_force[0],
-                               external_force[1],
-                               external_force[2]};
-    cell_owners.add_up(forces, make_array_view(totals));
+  }
+
+  std::vector<double>
+  CellPopulation::owned_totals() const
+  {
+    double n_not_finite = 0.;
+    for (unsigned int c = 0; c < size(); ++c)
+      if (cell_owners.owns(c))
+        for (const double f : forces[c])
+          n_not_finite += std::isfinite(f) ? 0. : 1.;
+    return {total_energy,
+            external_force[0],
+            external_force[1],
+            external_force[2],
+            n_not_finite};
+  }
+
+  void
+  CellPopulation::take_totals(const std::vector<double> &totals)
+  {
     total_energy = totals[0];
     for (unsigned int d = 0; d < 3; ++d)
       external_force[d] = totals[d + 1];
-    return per_point(forces);
+    all_forces_finite = totals[4] == 0.;
   }
 
   void

@@ -12,37 +12,44 @@ namespace rbc_ifem
     /// Tags of the two directions, above those deal.II uses.
     constexpr int to_readers_tag     = 7001;
     constexpr int to_fluid_ranks_tag = 7002;
-
-    using RouteMap = std::map<unsigned int, std::vector<unsigned int>>;
   } // namespace
+
+  std::vector<PointExchange::Route>
+  PointExchange::to_routes(const RouteMap &map)
+  {
+    std::vector<Route> routes;
+    for (const auto &[other, points] : map)
+      routes.push_back({other, points});
+    return routes;
+  }
 
   PointExchange::PointExchange(const MPI_Comm                   communicator,
                                const std::vector<unsigned int> &fluid_ranks,
                                const std::vector<unsigned int> &owners,
                                const std::vector<unsigned int> &read)
-    : communicator(communicator)
+    : PointExchange(communicator, fluid_ranks, owners)
   {
-    AssertDimension(fluid_ranks.size(), owners.size());
-    const unsigned int rank      = this_rank(communicator);
-    const auto         to_routes = [](const RouteMap &map) {
-      std::vector<Route> routes;
-      for (const auto &[other, points] : map)
-        routes.push_back({other, points});
-      return routes;
-    };
-
     // What a rank reads it asks of the points' fluid ranks, which learn
     // from the asking whom to send what.
-    RouteMap asked;
+    const unsigned int rank = this_rank(communicator);
+    RouteMap           asked;
     for (const unsigned int i : read)
       if (fluid_ranks[i] != rank)
         asked[fluid_ranks[i]].push_back(i);
     reader_receives = to_routes(asked);
     reader_sends = to_routes(Utilities::MPI::some_to_some(communicator, asked));
+  }
 
+  PointExchange::PointExchange(const MPI_Comm                   communicator,
+                               const std::vector<unsigned int> &fluid_ranks,
+                               const std::vector<unsigned int> &owners)
+    : communicator(communicator)
+  {
+    AssertDimension(fluid_ranks.size(), owners.size());
     // Back to the fluid ranks: both ends know the owners and the fluid
     // ranks of every point, so no one needs to ask.
-    RouteMap sends, receives;
+    const unsigned int rank = this_rank(communicator);
+    RouteMap           sends, receives;
     for (unsigned int i = 0; i < fluid_ranks.size(); ++i)
       if (owners[i] == rank && fluid_ranks[i] != rank)
         sends[fluid_ranks[i]].push_back(i);

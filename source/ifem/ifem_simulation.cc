@@ -5,6 +5,7 @@
 #include <rbc_ifem/base/solver_failure.h>
 #include <rbc_ifem/coupling/contact_forces.h>
 #include <rbc_ifem/coupling/membrane_forces.h>
+#include <rbc_ifem/coupling/point_exchange.h>
 #include <rbc_ifem/coupling/pushing_force.h>
 #include <rbc_ifem/coupling/semi_implicit_load.h>
 #include <rbc_ifem/coupling/time_step_limit.h>
@@ -285,7 +286,7 @@ namespace rbc_ifem
     std::vector<Tensor<1, 3>> forces;
     {
       TimerOutput::Scope scope(timer, "membrane forces");
-      forces = cells.compute_forces();
+      forces = cells.compute_owned_forces();
     }
     if (parameters.immersed.coupling == CouplingScheme::semi_implicit)
       {
@@ -296,11 +297,15 @@ namespace rbc_ifem
         TimerOutput::Scope scope(timer, "coupling: multigrid levels");
         multilevel_term->update();
       }
-    for (const Tensor<1, 3> &force : forces)
-      if (!std::isfinite(force.norm()))
-        stop("the membrane forces are not finite", last_good);
+    if (!cells.forces_finite())
+      stop("the membrane forces are not finite", last_good);
     {
       TimerOutput::Scope scope(timer, "coupling: spread");
+      // From each cell's owner to the ranks whose fluid cells hold its
+      // points, not summed over all ranks.
+      const std::vector<unsigned int> &fluid_ranks = coupling->point_ranks();
+      PointExchange(communicator, fluid_ranks, cells.point_owners(fluid_ranks))
+        .to_fluid_ranks(forces);
       load = 0.;
       coupling->spread(forces, fluid.velocity_zero_constraints(), load);
       fluid.set_body_force(load);

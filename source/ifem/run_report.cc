@@ -177,15 +177,16 @@ namespace rbc_ifem
            << range.max;
       return text.str();
     };
-    const std::string collectives = spread(during.collectives);
-    const std::string messages    = spread(during.messages);
-    const std::string bytes       = spread(during.bytes);
+    const std::string collectives      = spread(during.collectives);
+    const std::string messages         = spread(during.messages);
+    const std::string bytes            = spread(during.bytes);
+    const std::string collective_bytes = spread(during.collective_bytes);
     pcout << "  per rank and step, least to most over "
           << Utilities::MPI::n_mpi_processes(communicator) << ": "
           << collectives << " collective MPI calls, " << messages
-          << " messages sent, " << bytes << " bytes sent (MpiTraffic); "
-          << handovers << " hand-overs of a red cell to another rank"
-          << std::endl;
+          << " messages sent, " << bytes << " bytes sent, " << collective_bytes
+          << " bytes into collectives (MpiTraffic); " << handovers
+          << " hand-overs of a red cell to another rank" << std::endl;
   }
 
   void

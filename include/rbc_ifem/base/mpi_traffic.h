@@ -21,6 +21,10 @@ namespace rbc_ifem
     unsigned long long messages = 0;
     /// The bytes those sends carried.
     unsigned long long bytes = 0;
+    /// The bytes this rank put into the collective calls: its send buffer
+    /// (what it receives, for a scatter), so that a sum over all membrane
+    /// points shows as their number of values, whatever the ranks.
+    unsigned long long collective_bytes = 0;
 
     /// The counts of this rank so far.
     static MpiTraffic

@@ -130,6 +130,21 @@ namespace rbc_ifem
     compute_forces();
 
     /**
+     * compute_forces() in the rows of this rank's cells only (the others
+     * zero), without the forces' sum over the ranks: a PointExchange takes
+     * them to the points' fluid ranks (to_fluid_ranks()). The energy, the
+     * held force and forces_finite() are summed over the ranks all the
+     * same, in one reduction of five numbers (collective).
+     */
+    std::vector<Tensor<1, 3>>
+    compute_owned_forces();
+
+    /// Whether every force of the last compute_forces() or
+    /// compute_owned_forces() is finite, the same on every rank.
+    bool
+    forces_finite() const;
+
+    /**
      * Take the tangent stiffness K = ∂²E/∂x² of every CellForce at the
      * current positions, for stiffness_product() until the next call.
      */
@@ -322,6 +337,19 @@ namespace rbc_ifem
     CellShape
     shape(const unsigned int c, const Triangulation<2, 3> &surface) const;
 
+    /// Add every CellForce at the current positions into the forces of
+    /// this rank's cells, and their energy and external force.
+    void
+    add_every_cell_force();
+
+    /// This rank's energy, external force (x, y, z) and count of forces
+    /// that are not finite in its cells, to be summed over the ranks; and
+    /// the sums taken back.
+    std::vector<double>
+    owned_totals() const;
+    void
+    take_totals(const std::vector<double> &totals);
+
     /// One Vector per cell from values point by point, and back.
     std::vector<Vector<double>>
     per_cell(const std::vector<Tensor<1, 3>> &values) const;
@@ -364,7 +392,8 @@ namespace rbc_ifem
     std::vector<std::unique_ptr<CellForceStiffness>> stiffnesses;
     unsigned int                                     n_stiffness_changes = 0;
     Tensor<1, 3>                                     external_force;
-    double                                           total_energy = 0.;
+    double                                           total_energy      = 0.;
+    bool                                             all_forces_finite = true;
   };
 } // namespace rbc_ifem
 

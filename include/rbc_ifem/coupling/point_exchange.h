@@ -4,6 +4,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/tensor.h>
 
+#include <map>
 #include <vector>
 
 namespace rbc_ifem
@@ -40,6 +41,16 @@ namespace rbc_ifem
                   const std::vector<unsigned int> &read);
 
     /**
+     * Set up the traffic to the fluid ranks only (to_fluid_ranks()), for
+     * values that the owners alone have, such as the membrane forces
+     * (CellPopulation::compute_owned_forces()). Both ends know every
+     * point's two ranks, so this is not collective.
+     */
+    PointExchange(const MPI_Comm                   communicator,
+                  const std::vector<unsigned int> &fluid_ranks,
+                  const std::vector<unsigned int> &owners);
+
+    /**
      * @p values holds this rank's fluid points' values on entry (as
      * ImmersedCoupling::evaluate() leaves them); on exit also those of
      * every point it reads, from their fluid ranks.
@@ -67,6 +78,13 @@ namespace rbc_ifem
       unsigned int              rank;
       std::vector<unsigned int> points;
     };
+
+    /// The points of each other rank, by rank.
+    using RouteMap = std::map<unsigned int, std::vector<unsigned int>>;
+
+    /// The routes of @p map, by ascending rank.
+    static std::vector<Route>
+    to_routes(const RouteMap &map);
 
     /// Send the @p sends' values, receive the @p receives' into @p values.
     void

@@ -69,8 +69,9 @@ namespace rbc_ifem
      * What each rank asked of MPI in a run's @p n_run steps, @p during them
      * (MpiTraffic::so_far() after, less before), per step, least to most
      * over the ranks (collective): collective calls, point-to-point
-     * messages and their bytes. Whether the communication grows with the
-     * cells (doc/scaling.md). With them, how many times in the run a red
+     * messages and their bytes, and the bytes put into the collectives. Whether
+     * the communication grows with the cells (doc/scaling.md). With them, how
+     * many times in the run a red
      * cell went to another owner, @p handovers (CellOwners::place()).
      */
     void

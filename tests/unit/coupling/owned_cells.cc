@@ -42,6 +42,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "unit/membrane/membrane_fixtures.h"
@@ -170,16 +171,42 @@ namespace
     return difference.l2_norm() / b.l2_norm();
   }
 
+  /// Not a number at the first DoF of the last cell, added by its owner.
+  class BrokenForce : public CellForce
+  {
+  public:
+    explicit BrokenForce(const CellOwners &owners)
+      : owners(owners)
+    {}
+
+    CellForceReport
+    add_forces(const std::vector<Vector<double>> &,
+               std::vector<Vector<double>> &forces) const override
+    {
+      if (owners.owns(forces.size() - 1))
+        forces.back()[0] = std::numeric_limits<double>::quiet_NaN();
+      return {};
+    }
+
+    std::unique_ptr<CellForceStiffness>
+    stiffness(const std::vector<Vector<double>> &) const override
+    {
+      return nullptr;
+    }
+
+  private:
+    const CellOwners &owners;
+  };
+
   /**
-   * L v and L's diagonal estimate of the @p owned cells (SemiImplicitLoad,
-   * point to point) against the same summed over the ranks with K of the
-   * cells @p alone, on the periodic capillary of the train (refined once,
-   * fully distributed in slabs), for a smooth v.
+   * The fluid loads of the @p owned cells, point to point, against the same
+   * summed over the ranks from the cells @p alone, on the periodic
+   * capillary of the train (refined once, fully distributed in slabs): the
+   * forces F (compute_owned_forces(), to the fluid ranks), and L v and L's
+   * diagonal estimate (SemiImplicitLoad) for a smooth v.
    */
   void
-  check_semi_implicit_load(Checker              &check,
-                           const CellPopulation &owned,
-                           const CellPopulation &alone)
+  check_loads(Checker &check, CellPopulation &owned, CellPopulation &alone)
   {
     GeometryParameters geometry;
     geometry.capillary_radius = wall_radius;
@@ -234,10 +261,26 @@ namespace
                   relative_difference(exchanged, summed),
                   1e-12);
 
+    // The forces: each owner's rows to the points' fluid ranks.
+    const std::vector<unsigned int> &fluid_ranks = coupling.point_ranks();
+    std::vector<Tensor<1, 3>>        forces      = owned.compute_owned_forces();
+    PointExchange(MPI_COMM_WORLD, fluid_ranks, owned.point_owners(fluid_ranks))
+      .to_fluid_ranks(forces);
+    summed    = 0.;
+    exchanged = 0.;
+    coupling.spread(alone.compute_forces(), none, summed);
+    coupling.spread(forces, none, exchanged);
+    check.at_most("F spread, point to point against summed (relative)",
+                  relative_difference(exchanged, summed),
+                  1e-12);
+    check.at_most("energy with owned forces against alone (relative)",
+                  std::abs(owned.energy() - alone.energy()) / alone.energy(),
+                  1e-13);
+    check.holds("the forces are finite, on every rank", owned.forces_finite());
+
     // Not a vacuous check: values travel (points whose fluid rank is not
     // their owner, contact partners read across two owners).
-    const std::vector<unsigned int> &fluid_ranks = coupling.point_ranks();
-    const PointExchange              exchange(MPI_COMM_WORLD,
+    const PointExchange exchange(MPI_COMM_WORLD,
                                  fluid_ranks,
                                  owned.point_owners(fluid_ranks),
                                  owned.points_read());
@@ -310,7 +353,7 @@ main(int argc, char *argv[])
                                     alone.stiffness_diagonal()),
                 1e-12);
 
-  check_semi_implicit_load(check, owned, alone);
+  check_loads(check, owned, alone);
 
   check_owners(check, owned, alone);
   check.holds("the ranks own runs of neighbours (cells 3 and 4 together)",
@@ -364,5 +407,11 @@ main(int argc, char *argv[])
               squeezed(owned, x_owned) == stages_alone);
   check.holds("squeezed positions by owners equal those alone",
               x_owned == x_alone);
+
+  // A force not a number on the last cell: every rank learns it, not only
+  // the cell's owner.
+  owned.add_force(std::make_unique<BrokenForce>(owned.owners()));
+  owned.compute_owned_forces();
+  check.holds("a force not finite, seen by every rank", !owned.forces_finite());
   return check.exit_code();
 }

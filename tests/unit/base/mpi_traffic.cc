@@ -53,7 +53,7 @@ main(int argc, char *argv[])
   MPI_Wait(&request, MPI_STATUS_IGNORE);
   const MpiTraffic during = MpiTraffic::so_far() - before;
 
-  const auto count = [&](const std::string        &what,
+  const auto count = [&](const std::string       &what,
                          const unsigned long long counted,
                          const unsigned long long expected) {
     check.holds(what + ": " + std::to_string(counted) + ", expected " +

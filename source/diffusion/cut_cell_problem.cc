@@ -391,13 +391,13 @@ namespace rbc_ifem
     const MembraneSurfaces   &membranes = geometry.membranes();
     const FE_Q<2, 3>          flux_fe(1);
     flux_dof_handlers.clear();
-    std::vector<Vector<double>> projected(membranes.size());
+    projections.resize(membranes.size());
     for (unsigned int m = 0; m < membranes.size(); ++m)
       {
         flux_dof_handlers.push_back(
           std::make_unique<DoFHandler<2, 3>>(*membranes.meshes()[m]));
         flux_dof_handlers.back()->distribute_dofs(flux_fe);
-        projected[m].reinit(flux_dof_handlers.back()->n_dofs());
+        projections[m].reinit(flux_dof_handlers.back()->n_dofs());
       }
 
     // j at each surface point, to its membrane: its flow and the integrals
@@ -426,12 +426,11 @@ namespace rbc_ifem
               flux_dof_handlers[point.membrane].get());
             membrane_cell->get_dof_indices(flux_dofs);
             for (unsigned int i = 0; i < flux_dofs.size(); ++i)
-              projected[point.membrane][flux_dofs[i]] +=
+              projections[point.membrane][flux_dofs[i]] +=
                 j[q] * flux_fe.shape_value(i, point.reference) * surface.JxW(q);
           }
       }
     Utilities::MPI::sum(flows, communicator, flows);
-    project_flux_map(projected);
     alveolar_flow = flow_through_boundary(dof_handler,
                                           geometry.mapping(),
                                           solution,
@@ -469,9 +468,16 @@ namespace rbc_ifem
     return j;
   }
 
-  void
-  CutCellProblem::project_flux_map(std::vector<Vector<double>> &projected)
+  std::vector<Vector<double>>
+  CutCellProblem::flux_map() const
   {
+    // Every membrane's integrals in one sum over the ranks: one collective
+    // per output, however many the membranes.
+    std::vector<double> packed;
+    for (const Vector<double> &projected : projections)
+      packed.insert(packed.end(), projected.begin(), projected.end());
+    Utilities::MPI::sum(packed, communicator, packed);
+
     // j_i = ∫ j μ_i / ∫ μ_i on the membrane.
     const MembraneSurfaces              &membranes = geometry.membranes();
     const FE_Q<2, 3>                     flux_fe(1);
@@ -481,11 +487,11 @@ namespace rbc_ifem
                                    quadrature,
                                    update_values | update_JxW_values);
     std::vector<types::global_dof_index> dofs(flux_fe.n_dofs_per_cell());
-    flux_map.resize(membranes.size());
+    std::vector<Vector<double>>          map(membranes.size());
+    auto                                 summed = packed.begin();
     for (unsigned int m = 0; m < membranes.size(); ++m)
       {
-        Utilities::MPI::sum(projected[m], communicator, projected[m]);
-        Vector<double> mass(projected[m].size());
+        Vector<double> mass(projections[m].size());
         for (const auto &cell : flux_dof_handlers[m]->active_cell_iterators())
           {
             membrane_values.reinit(cell);
@@ -496,10 +502,11 @@ namespace rbc_ifem
                 mass[dofs[i]] +=
                   membrane_values.shape_value(i, q) * membrane_values.JxW(q);
           }
-        flux_map[m].reinit(mass.size());
+        map[m].reinit(mass.size());
         for (unsigned int i = 0; i < mass.size(); ++i)
-          flux_map[m][i] = projected[m][i] / mass[i];
+          map[m][i] = *summed++ / mass[i];
       }
+    return map;
   }
 
   types::global_dof_index
@@ -552,7 +559,7 @@ namespace rbc_ifem
                         membranes.meshes(),
                         membranes.mapping(),
                         flux_dof_handlers,
-                        flux_map,
+                        flux_map(),
                         directory,
                         name,
                         counter,

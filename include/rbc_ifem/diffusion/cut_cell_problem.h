@@ -76,6 +76,18 @@ namespace rbc_ifem
                  const unsigned int counter    = 0,
                  const FieldData   &field_data = {}) const override;
 
+    /**
+     * The flux map of the last solve, what write_output() writes: on each
+     * membrane (in the order of the geometry's MembraneSurfaces) the
+     * lumped L² projection of the flux j onto FE_Q<2,3>(1), j_i = ∫ j μ_i /
+     * ∫ μ_i, with the DoFs of a DoFHandler of FE_Q<2,3>(1) on the membrane's
+     * mesh [µm³ µm⁻² s⁻¹ at the run's P_A]. Its integral is the membrane's
+     * flow. The ranks' parts of ∫ j μ_i are summed in one reduction for all
+     * membranes, once per call (collective): only output needs it.
+     */
+    std::vector<Vector<double>>
+    flux_map() const;
+
   protected:
     /**
      * The problem of @p parameters on @p geometry (which must outlive it),
@@ -181,7 +193,8 @@ namespace rbc_ifem
     template <typename Function>
     void
     for_each_ghost_penalty_face(const Function &f) const;
-    /// The flows into the membranes and the flux map, from the solution.
+    /// The flows into the membranes and this rank's part of the flux map
+    /// (projections), from the solution.
     void
     compute_flows();
     /// The consistent Nitsche flux j = −{αD ∂ₙP} + β [P] into the
@@ -189,10 +202,6 @@ namespace rbc_ifem
     std::vector<double>
     membrane_flux(const NonMatching::FEImmersedSurfaceValues<3> &surface,
                   const DoFHandler<3>::active_cell_iterator     &cell) const;
-    /// The lumped L² projection of the flux j onto FE_Q<2,3>(1) on each
-    /// membrane, from ∫ j μ_i in @p projected.
-    void
-    project_flux_map(std::vector<Vector<double>> &projected);
 
     /// FE_Q(k) or a system of fields, and FE_Nothing.
     hp::FECollection<3> fe_collection;
@@ -205,9 +214,10 @@ namespace rbc_ifem
     TrilinosWrappers::MPI::Vector     rhs;
     TrilinosWrappers::PreconditionAMG amg;
 
-    /// The flux map, FE_Q<2,3>(1) on each membrane.
+    /// The flux map's space, FE_Q<2,3>(1) on each membrane, and the
+    /// integrals ∫ j μ_i over this rank's cut cells.
     std::vector<std::unique_ptr<DoFHandler<2, 3>>> flux_dof_handlers;
-    std::vector<Vector<double>>                    flux_map;
+    std::vector<Vector<double>>                    projections;
   };
 } // namespace rbc_ifem
 

@@ -167,12 +167,23 @@ namespace rbc_ifem
       if (owner_cell[i] != triangulation.end())
         keep(i, locate_near(owner_cell[i], wrapped[i]));
     Utilities::MPI::min(claims, communicator, claims);
-    if (std::count(claims.begin(), claims.end(), nobody) > 0)
+    // The same on every rank now; the second minimum takes only the points
+    // nobody kept, whose list every rank knows alike.
+    std::vector<unsigned int> unclaimed;
+    for (unsigned int i = 0; i < n_membrane_points; ++i)
+      if (claims[i] == nobody)
+        unclaimed.push_back(i);
+    if (!unclaimed.empty())
       {
-        for (unsigned int i = 0; i < n_membrane_points; ++i)
-          if (claims[i] == nobody)
-            keep(i, locate_anywhere(wrapped[i]));
-        Utilities::MPI::min(claims, communicator, claims);
+        std::vector<unsigned int> found(unclaimed.size());
+        for (unsigned int k = 0; k < unclaimed.size(); ++k)
+          {
+            keep(unclaimed[k], locate_anywhere(wrapped[unclaimed[k]]));
+            found[k] = claims[unclaimed[k]];
+          }
+        Utilities::MPI::min(found, communicator, found);
+        for (unsigned int k = 0; k < unclaimed.size(); ++k)
+          claims[unclaimed[k]] = found[k];
       }
     return claims;
   }

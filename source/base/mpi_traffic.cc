@@ -22,9 +22,11 @@ namespace
   {
     if (type == MPI_DATATYPE_NULL || count <= 0)
       return 0;
-    int size = 0;
-    PMPI_Type_size(type, &size);
-    return static_cast<unsigned long long>(count) * size;
+    // The _x variant: deal.II's types for large messages are larger than
+    // an int can count.
+    MPI_Count size = 0;
+    PMPI_Type_size_x(type, &size);
+    return size > 0 ? static_cast<unsigned long long>(count) * size : 0;
   }
 
   /// The number of ranks of @p c.
@@ -40,8 +42,9 @@ namespace
   unsigned long long
   bytes_of(const int *counts, MPI_Datatype type, MPI_Comm c)
   {
-    long long count = 0;
-    for (long long r = 0; r < ranks_in(c); ++r)
+    const long long n_ranks = ranks_in(c);
+    long long       count   = 0;
+    for (long long r = 0; r < n_ranks; ++r)
       count += counts[r];
     return bytes_of(count, type);
   }
@@ -181,7 +184,7 @@ COLLECTIVE(MPI_Alltoall,
             MPI_Datatype tr,
             MPI_Comm     c),
            (s, ns, ts, r, nr, tr, c),
-           bytes_of(ns, ts) * ranks_in(c))
+           s == MPI_IN_PLACE ? 0 : bytes_of(ns, ts) * ranks_in(c))
 COLLECTIVE(MPI_Alltoallv,
            (const void  *s,
             const int   *ns,
@@ -193,7 +196,7 @@ COLLECTIVE(MPI_Alltoallv,
             MPI_Datatype tr,
             MPI_Comm     c),
            (s, ns, ds, ts, r, nr, dr, tr, c),
-           bytes_of(ns, ts, c))
+           s == MPI_IN_PLACE ? 0 : bytes_of(ns, ts, c))
 COLLECTIVE(
   MPI_Reduce_scatter,
   (const void *s, void *r, const int *n, MPI_Datatype t, MPI_Op o, MPI_Comm c),

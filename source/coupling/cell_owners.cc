@@ -2,6 +2,7 @@
 #include <rbc_ifem/coupling/cell_owners.h>
 
 #include <algorithm>
+#include <map>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -107,6 +108,70 @@ namespace rbc_ifem
     for (Vector<double> &cell : values)
       for (double &entry : cell)
         entry = *value++;
+  }
+
+  void
+  CellOwners::hand_over(const std::vector<unsigned int> &before,
+                        std::vector<Vector<double>>     &values) const
+  {
+    if (!shared())
+      return;
+    AssertDimension(before.size(), values.size());
+    // Both ends list the cells they send to or get from each rank in the
+    // cells' order: one message per pair of ranks.
+    std::map<unsigned int, std::vector<unsigned int>> sends, receives;
+    for (unsigned int c = 0; c < values.size(); ++c)
+      if (before[c] == rank && !owns(c))
+        sends[owner(c)].push_back(c);
+      else if (before[c] != rank && owns(c))
+        receives[before[c]].push_back(c);
+    constexpr int                    tag = 7003;
+    std::vector<MPI_Request>         requests;
+    std::vector<std::vector<double>> buffers;
+    requests.reserve(sends.size() + receives.size());
+    buffers.reserve(sends.size() + receives.size());
+    for (const auto &[other, cells] : receives)
+      {
+        std::size_t size = 0;
+        for (const unsigned int c : cells)
+          size += values[c].size();
+        buffers.emplace_back(size);
+        requests.emplace_back();
+        AssertThrowMPI(MPI_Irecv(buffers.back().data(),
+                                 size,
+                                 MPI_DOUBLE,
+                                 other,
+                                 tag,
+                                 communicator,
+                                 &requests.back()));
+      }
+    for (const auto &[other, cells] : sends)
+      {
+        buffers.emplace_back();
+        for (const unsigned int c : cells)
+          buffers.back().insert(buffers.back().end(),
+                                values[c].begin(),
+                                values[c].end());
+        requests.emplace_back();
+        AssertThrowMPI(MPI_Isend(buffers.back().data(),
+                                 buffers.back().size(),
+                                 MPI_DOUBLE,
+                                 other,
+                                 tag,
+                                 communicator,
+                                 &requests.back()));
+      }
+    AssertThrowMPI(
+      MPI_Waitall(requests.size(), requests.data(), MPI_STATUSES_IGNORE));
+    auto buffer = buffers.begin();
+    for (const auto &[other, cells] : receives)
+      {
+        auto value = buffer->begin();
+        for (const unsigned int c : cells)
+          for (double &entry : values[c])
+            entry = *value++;
+        ++buffer;
+      }
   }
 
   void

@@ -132,7 +132,7 @@ namespace rbc_ifem
     if (cell_owners.shared())
       {
         std::vector<double>       where(size());
-        std::vector<unsigned int> points(size());
+        std::vector<unsigned int> points(size()), before(size());
         for (unsigned int c = 0; c < size(); ++c)
           {
             const auto &nodes = model->nodes();
@@ -140,8 +140,11 @@ namespace rbc_ifem
               where[c] += x[c][dofs[0]] / nodes.size();
             where[c] = wrap_into_segment(Point<3>(where[c], 0., 0.), period)[0];
             points[c] = nodes.size();
+            before[c] = cell_owners.owner(c);
           }
         const std::vector<unsigned int> lost = cell_owners.place(where, points);
+        // The last forces go with their cells: the new owner writes them.
+        cell_owners.hand_over(before, forces);
         ++n_stiffness_changes;
         if (!lost.empty())
           stiffnesses.clear();
@@ -214,6 +217,12 @@ namespace rbc_ifem
     cell_owners.add_up(no_forces, make_array_view(totals));
     take_totals(totals);
     return per_point(forces);
+  }
+
+  const std::vector<Vector<double>> &
+  CellPopulation::last_forces() const
+  {
+    return forces;
   }
 
   bool

@@ -69,8 +69,10 @@ namespace rbc_ifem
    *
    * On several ranks each rank adds the forces, energy and products K v of
    * the cells it owns (CellOwners) and leaves the others' alone: the
-   * population adds every force's results up over the ranks in one
-   * reduction (CellPopulation::compute_forces()). A term shared by two
+   * population keeps them with the owners (CellPopulation::
+   * compute_owned_forces(); compute_forces() adds them up over the ranks
+   * in one reduction) and sums only the energy and the held force. A term
+   * shared by two
    * cells of different owners (a pair's energy) counts half on each.
    */
   class CellForce

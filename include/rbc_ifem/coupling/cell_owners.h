@@ -21,10 +21,12 @@ namespace rbc_ifem
    * ranks (ghosts). As the cells flow the order changes (a cell crossing
    * the end of a periodic segment goes from the last run to the first)
    * and cells are handed over between steps. Every rank still holds every
-   * cell's positions and gets every cell's results, summed over the
-   * owners in one reduction for all cells (add_up()): its elasticity, its
-   * contact with cells near it and the forces that hold or push it
-   * (CellForce). Issue 51 goes on to ghost copies near the owned cells
+   * cell's positions. A cell's forces (its elasticity, its contact with
+   * cells near it and the forces that hold or push it, CellForce) stay
+   * with its owner and go with the cell when it is handed over
+   * (hand_over()); what every rank needs of every cell, such as the
+   * volumes and shapes, is summed over the owners in one reduction for all
+   * cells (add_up()). Issue 51 goes on to ghost copies near the owned cells
    * instead of every cell everywhere.
    */
   class CellOwners
@@ -75,6 +77,17 @@ namespace rbc_ifem
     void
     add_up(std::vector<Vector<double>> &values,
            const ArrayView<double>     &scalars) const;
+
+    /**
+     * Send the @p values (one Vector per cell) of every cell that changed
+     * owner in the last place() from its owner @p before (per cell, the
+     * owners before that place()) to its new owner, point to point: what an
+     * owner alone keeps of a cell goes with the cell. Every rank knows both
+     * ends of every hand-over, so nothing is asked; call it on every rank.
+     */
+    void
+    hand_over(const std::vector<unsigned int> &before,
+              std::vector<Vector<double>>     &values) const;
 
     /// Replace @p values on every rank by their smallest over the ranks, in
     /// one reduction. Collective; nothing to do on one rank.

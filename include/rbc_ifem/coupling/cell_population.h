@@ -70,10 +70,10 @@ namespace rbc_ifem
      * of @p communicator, so that every rank must then compute the forces
      * and the stiffness together. With at least as many cells as ranks,
      * each cell has an owner rank (CellOwners) that computes its forces and
-     * stiffness alone, added up over the ranks in one reduction, and keeps
-     * its Membrane; with fewer, every rank keeps every cell and takes a
-     * share of every membrane's cell loops (Membrane::share_work()). The
-     * owners go by where the cells are along the capillary, in a periodic
+     * stiffness alone and keeps them and its Membrane; with fewer, every rank
+     * keeps every cell and takes a share of every membrane's cell loops
+     * (Membrane::share_work()). The owners go by where the cells are along the
+     * capillary, in a periodic
      * segment of length @p period if there is one (each cell's mean point
      * wrapped into it), and are chosen again whenever the cells move. Each
      * rank makes every cell, one at a time, for its reference positions and
@@ -124,7 +124,10 @@ namespace rbc_ifem
 
     /**
      * F = -∂E/∂x at every point [pN], the sum of every CellForce at the
-     * current positions; keeps the per-DoF sums of every cell for output.
+     * current positions, summed over the ranks (every rank gets every
+     * cell's; tests and small programs such as the examples use it, a
+     * flowing run compute_owned_forces()); keeps them per cell for output
+     * (last_forces()).
      */
     std::vector<Tensor<1, 3>>
     compute_forces();
@@ -138,6 +141,16 @@ namespace rbc_ifem
      */
     std::vector<Tensor<1, 3>>
     compute_owned_forces();
+
+    /**
+     * The forces of the last compute_forces() or compute_owned_forces(),
+     * per cell in the order of its Membrane's DoFs [pN]: after
+     * compute_owned_forces() those of the cells this rank owns (zero for
+     * the others); a cell handed over since went with its forces, which its
+     * new owner writes out (write_vtu()).
+     */
+    const std::vector<Vector<double>> &
+    last_forces() const;
 
     /// Whether every force of the last compute_forces() or
     /// compute_owned_forces() is finite, the same on every rank.
@@ -199,13 +212,15 @@ namespace rbc_ifem
     stiffness_serial() const;
 
     /**
-     * The net external force on the cells at the last compute_forces()
-     * [pN]: what holds them (CellForceReport::external_force, summed).
+     * The net external force on the cells at the last compute_forces() or
+     * compute_owned_forces() [pN]: what holds them
+     * (CellForceReport::external_force, summed over the cells and ranks).
      */
     Tensor<1, 3>
     held_force() const;
 
-    /// The energy of every CellForce at the last compute_forces() [pN µm].
+    /// The energy of every CellForce at the last compute_forces() or
+    /// compute_owned_forces(), over all ranks [pN µm].
     double
     energy() const;
 

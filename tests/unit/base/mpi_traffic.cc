@@ -3,9 +3,9 @@
 // The counts of MpiTraffic, the program's own wrappers of the MPI
 // functions (PMPI), against calls of known size: a sum of 10 doubles is one
 // collective call that puts 80 bytes in, a broadcast of 3 ints 12 on every
-// rank, an all-gather of 2 ints in place 0 (its send arguments are not
-// read), and a send of 5 doubles to the next rank one message of 40 bytes.
-// The counts are each rank's, so every rank checks its own.
+// rank, an all-gather of 2 ints in place 0 (its send count and type are
+// given but not read), and a send of 5 doubles to the next rank one message of
+// 40 bytes. The counts are each rank's, so every rank checks its own.
 
 #include <rbc_ifem/base/mpi_traffic.h>
 
@@ -37,8 +37,7 @@ main(int argc, char *argv[])
   std::array<int, 3> broadcast{};
   MPI_Bcast(broadcast.data(), 3, MPI_INT, 0, world);
   std::vector<int> gathered(2 * n_ranks);
-  MPI_Allgather(
-    MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, gathered.data(), 2, MPI_INT, world);
+  MPI_Allgather(MPI_IN_PLACE, 2, MPI_INT, gathered.data(), 2, MPI_INT, world);
   std::array<double, 5> sent{}, received{};
   MPI_Request           request;
   MPI_Isend(

@@ -171,6 +171,28 @@ namespace
     return difference.l2_norm() / b.l2_norm();
   }
 
+  /**
+   * The largest difference of the last forces of the cells this rank owns
+   * in @p owned from those of @p alone, over the largest force of @p alone.
+   */
+  double
+  owned_rows_difference(const CellPopulation &owned,
+                        const CellPopulation &alone)
+  {
+    double difference = 0., largest = 0.;
+    for (unsigned int c = 0; c < alone.size(); ++c)
+      {
+        largest = std::max(largest, alone.last_forces()[c].linfty_norm());
+        if (owned.owners().owns(c))
+          {
+            Vector<double> d = owned.last_forces()[c];
+            d -= alone.last_forces()[c];
+            difference = std::max(difference, d.linfty_norm());
+          }
+      }
+    return difference / largest;
+  }
+
   /// Not a number at the first DoF of the last cell, added by its owner.
   class BrokenForce : public CellForce
   {
@@ -363,15 +385,21 @@ main(int argc, char *argv[])
   // last cells cross the end and become the first, and change owner.
   const std::vector<Tensor<1, 3>> along(alone.n_points(),
                                         Tensor<1, 3>({spacing / 2., 0., 0.}));
-  double                          forces_moved = 0., products_moved = 0.;
+  double forces_moved = 0., forces_handed_over = 0., products_moved = 0.;
+  alone.compute_forces();
+  owned.compute_owned_forces();
   for (unsigned int step = 0; step < 4; ++step)
     {
       alone.move(along, 1.);
       owned.move(along, 1.);
       check_owners(check, owned, alone);
-      forces_moved = std::max(forces_moved,
-                              relative_difference(owned.compute_forces(),
-                                                  alone.compute_forces()));
+      // The forces from before the move, each with its cell's new owner.
+      forces_handed_over =
+        std::max(forces_handed_over, owned_rows_difference(owned, alone));
+      alone.compute_forces();
+      owned.compute_owned_forces();
+      forces_moved =
+        std::max(forces_moved, owned_rows_difference(owned, alone));
       alone.linearize();
       owned.linearize();
       products_moved =
@@ -384,6 +412,9 @@ main(int argc, char *argv[])
                  2);
   check.at_most("forces after each move, by owners against alone",
                 forces_moved,
+                1e-12);
+  check.at_most("forces of the cells handed over, on their new owners",
+                forces_handed_over,
                 1e-12);
   check.at_most("K v after each move, by owners against alone",
                 products_moved,

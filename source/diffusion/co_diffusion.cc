@@ -677,6 +677,7 @@ namespace rbc_ifem
                         name,
                         counter,
                         communicator,
-                        field_data);
+                        field_data,
+                        "co_flux");
   }
 } // namespace rbc_ifem

@@ -207,6 +207,13 @@ namespace rbc_ifem
   void
   CutCellProblem::assemble()
   {
+    assemble_operator();
+    build_preconditioner();
+  }
+
+  void
+  CutCellProblem::assemble_operator()
+  {
     TimerOutput::Scope scope(timer, "diffusion: assemble");
     matrix = 0.;
     rhs    = 0.;
@@ -215,7 +222,6 @@ namespace rbc_ifem
     matrix.compress(VectorOperation::add);
     rhs.compress(VectorOperation::add);
     hold_unsupported_dofs();
-    build_preconditioner();
   }
 
   void
@@ -267,7 +273,7 @@ namespace rbc_ifem
     // colour c: on a mesh cell the shape functions of the plasma's field
     // are on side 0, those of the red cell it reaches into on side 1.
     const FiniteElement<3>         &fe     = fe_collection[ActiveFE::fields];
-    const std::vector<unsigned int> fields = fields_on(cell);
+    const std::vector<unsigned int> fields = pressure_fields_on(cell);
     CutCellShapes                   shapes;
     for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
       {
@@ -279,27 +285,42 @@ namespace rbc_ifem
   }
 
   void
-  CutCellProblem::assemble_cells()
+  CutCellProblem::for_each_field_cell(
+    const NonMatching::RegionUpdateFlags &flags,
+    const std::function<void(const NonMatching::FEValues<3> &,
+                             const DoFHandler<3>::active_cell_iterator &)> &f)
+    const
   {
-    const auto fe_values_ptr =
-      geometry.cut_cell_values(fe_collection, assembly_flags());
-    NonMatching::FEValues<3> &fe_values = *fe_values_ptr;
-    const unsigned int n = fe_collection[ActiveFE::fields].n_dofs_per_cell();
-    FullMatrix<double> cell_matrix(n, n);
-    Vector<double>     cell_rhs(n);
-    std::vector<types::global_dof_index> dofs(n);
+    const auto values = geometry.cut_cell_values(fe_collection, flags);
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned() &&
           cell->active_fe_index() == ActiveFE::fields)
         {
-          fe_values.reinit(cell);
-          cell_matrix = 0.;
-          add_cell_terms(fe_values, cell, shapes_on(cell), cell_matrix);
-          cell->get_dof_indices(dofs);
-          cell_rhs = 0.;
-          constraints.distribute_local_to_global(
-            cell_matrix, cell_rhs, dofs, matrix, rhs);
+          values->reinit(cell);
+          f(*values, cell);
         }
+  }
+
+  void
+  CutCellProblem::assemble_cells()
+  {
+    const unsigned int n = fe_collection[ActiveFE::fields].n_dofs_per_cell();
+    FullMatrix<double> cell_matrix(n, n);
+    Vector<double>     cell_rhs(n);
+    std::vector<types::global_dof_index> dofs(n);
+    for_each_field_cell(assembly_flags(),
+                        [&](const NonMatching::FEValues<3>            &values,
+                            const DoFHandler<3>::active_cell_iterator &cell) {
+                          cell_matrix = 0.;
+                          add_cell_terms(values,
+                                         cell,
+                                         shapes_on(cell),
+                                         cell_matrix);
+                          cell->get_dof_indices(dofs);
+                          cell_rhs = 0.;
+                          constraints.distribute_local_to_global(
+                            cell_matrix, cell_rhs, dofs, matrix, rhs);
+                        });
   }
 
   void
@@ -451,7 +472,7 @@ namespace rbc_ifem
     const double flux_weight[2] = {coupling.plasma_flux, coupling.cell_flux};
     std::vector<double>       jump(n, 0.), values(n);
     std::vector<Tensor<1, 3>> flux(n), gradients(n);
-    for (const unsigned int f : fields_on(cell))
+    for (const unsigned int f : pressure_fields_on(cell))
       {
         const FEValuesExtractors::Scalar field(f);
         surface[field].get_function_values(solution, values);
@@ -515,6 +536,32 @@ namespace rbc_ifem
     return dof_handler.n_dofs() - n_unused_dofs;
   }
 
+  std::vector<unsigned int>
+  CutCellProblem::plasma_and_cell_fields(
+    const Triangulation<3>::cell_iterator &cell) const
+  {
+    const NonMatching::LocationToLevelSet location = geometry.location(cell);
+    std::vector<unsigned int>             fields;
+    if (location != NonMatching::LocationToLevelSet::outside)
+      fields.push_back(0);
+    if (location != NonMatching::LocationToLevelSet::inside)
+      fields.push_back(1 + geometry.colour(geometry.inside_of(cell)));
+    return fields;
+  }
+
+  std::string
+  CutCellProblem::flux_name() const
+  {
+    return "co_flux";
+  }
+
+  std::vector<unsigned int>
+  CutCellProblem::pressure_fields_on(
+    const Triangulation<3>::cell_iterator &cell) const
+  {
+    return fields_on(cell);
+  }
+
   void
   CutCellProblem::add_pressure_fields(DataOut<3> &data_out) const
   {
@@ -564,6 +611,7 @@ namespace rbc_ifem
                         name,
                         counter,
                         communicator,
-                        field_data);
+                        field_data,
+                        flux_name());
   }
 } // namespace rbc_ifem

@@ -1,4 +1,5 @@
 #include <rbc_ifem/diffusion/cut_cell_reaction.h>
+#include <rbc_ifem/diffusion/side_field.h>
 
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
@@ -8,42 +9,6 @@
 
 namespace rbc_ifem
 {
-  namespace
-  {
-    /**
-     * One side's P: on each mesh cell the field that @p field_on gives
-     * (numbers::invalid_unsigned_int: 0, the mesh cell is wholly on the
-     * other side).
-     */
-    class SideField : public DataPostprocessorScalar<3>
-    {
-    public:
-      SideField(
-        const std::string &name,
-        std::function<unsigned int(const DoFHandler<3>::cell_iterator &)>
-          field_on)
-        : DataPostprocessorScalar<3>(name, update_values)
-        , field_on(std::move(field_on))
-      {}
-
-      void
-      evaluate_vector_field(
-        const DataPostprocessorInputs::Vector<3> &inputs,
-        std::vector<Vector<double>>              &computed) const override
-      {
-        const unsigned int field = field_on(inputs.template get_cell<3>());
-        for (unsigned int q = 0; q < computed.size(); ++q)
-          computed[q](0) = field == numbers::invalid_unsigned_int ?
-                             0. :
-                             inputs.solution_values[q](field);
-      }
-
-    private:
-      const std::function<unsigned int(const DoFHandler<3>::cell_iterator &)>
-        field_on;
-    };
-  } // namespace
-
   CutCellReaction::CutCellReaction(
     const CutCellGeometry                     &geometry,
     const DiffusionParameters                 &parameters,
@@ -89,13 +54,7 @@ namespace rbc_ifem
   std::vector<unsigned int>
   CutCellReaction::fields_on(const Triangulation<3>::cell_iterator &cell) const
   {
-    const NonMatching::LocationToLevelSet location = geometry.location(cell);
-    std::vector<unsigned int>             fields;
-    if (location != NonMatching::LocationToLevelSet::outside)
-      fields.push_back(0);
-    if (location != NonMatching::LocationToLevelSet::inside)
-      fields.push_back(1 + geometry.colour(geometry.inside_of(cell)));
-    return fields;
+    return plasma_and_cell_fields(cell);
   }
 
   NonMatching::RegionUpdateFlags

@@ -35,8 +35,8 @@ namespace rbc_ifem
     class FluxVector : public DataPostprocessorVector<3>
     {
     public:
-      explicit FluxVector(const Mapping<2, 3> &mapping)
-        : DataPostprocessorVector<3>("co_flux_vector",
+      FluxVector(const Mapping<2, 3> &mapping, const std::string &name)
+        : DataPostprocessorVector<3>(name,
                                      update_values | update_quadrature_points)
         , mapping(mapping)
       {}
@@ -232,12 +232,13 @@ namespace rbc_ifem
     const std::string                                    &name,
     const unsigned int                                    counter,
     const MPI_Comm                                        communicator,
-    const FieldData                                      &field_data)
+    const FieldData                                      &field_data,
+    const std::string                                    &flux_name)
   {
     OutputFiles files;
     files.pressure = write_vtu_pieces(
       data_out, directory, name, counter, communicator, field_data);
-    const FluxVector flux_vector(mapping);
+    const FluxVector flux_vector(mapping, flux_name + "_vector");
     files.membranes = write_membranes(
       membranes,
       mapping,
@@ -245,7 +246,7 @@ namespace rbc_ifem
       name + "_membranes_" + Utilities::int_to_string(counter, 4),
       communicator,
       [&](const unsigned int m, DataOut<2, 3> &membrane_out) {
-        membrane_out.add_data_vector(*dof_handlers[m], flux[m], "co_flux");
+        membrane_out.add_data_vector(*dof_handlers[m], flux[m], flux_name);
         membrane_out.add_data_vector(*dof_handlers[m], flux[m], flux_vector);
       },
       field_data);

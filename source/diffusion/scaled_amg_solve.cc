@@ -1,4 +1,3 @@
-#include <rbc_ifem/diffusion/diagonally_scaled.h>
 #include <rbc_ifem/diffusion/scaled_amg_solve.h>
 
 #include <deal.II/lac/solver_cg.h>
@@ -41,28 +40,8 @@ namespace rbc_ifem
                   TrilinosWrappers::MPI::Vector           &x,
                   SolverControl                           &control)
   {
-    using Vector = TrilinosWrappers::MPI::Vector;
-    // D = diag(A)^-1/2: every row O(1) on the diagonal.
-    Vector scale(rhs), inverse_scale(rhs);
-    for (const auto i : owned_dofs)
-      {
-        scale[i]         = 1. / std::sqrt(matrix.diag_element(i));
-        inverse_scale[i] = 1. / scale[i];
-      }
-    scale.compress(VectorOperation::insert);
-    inverse_scale.compress(VectorOperation::insert);
-
-    Vector scaled_rhs(rhs);
-    scaled_rhs.scale(scale);
     x.reinit(rhs);
-    control.set_tolerance(control.tolerance() * scaled_rhs.l2_norm());
-    SolverCG<Vector> cg(control);
-    cg.solve(DiagonallyScaled<TrilinosWrappers::SparseMatrix, Vector>(matrix,
-                                                                      scale),
-             x,
-             scaled_rhs,
-             DiagonallyScaled<TrilinosWrappers::PreconditionAMG, Vector>(
-               amg, inverse_scale));
-    x.scale(scale);
+    SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+    solve_scaled(cg, matrix, amg, owned_dofs, rhs, x, control);
   }
 } // namespace rbc_ifem

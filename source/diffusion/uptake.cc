@@ -37,6 +37,10 @@ namespace rbc_ifem
     return row.str();
   }
 
+  UptakeFields::UptakeFields(const std::string &name)
+    : name(name)
+  {}
+
   void
   UptakeFields::write(const DiffusionSolver &diffusion,
                       const std::string     &directory,
@@ -48,11 +52,11 @@ namespace rbc_ifem
     // write_output() does what the ranks do together before it writes.
     write_together(communicator, [&]() {
       const DiffusionSolver::OutputFiles files =
-        diffusion.write_output(directory, "diffusion", counter, field_data);
+        diffusion.write_output(directory, name, counter, field_data);
       pressure.emplace_back(time, files.pressure);
       membranes.emplace_back(time, files.membranes);
-      write_pvd(directory, "diffusion", pressure, communicator);
-      write_pvd(directory, "diffusion_membranes", membranes, communicator);
+      write_pvd(directory, name, pressure, communicator);
+      write_pvd(directory, name + "_membranes", membranes, communicator);
     });
   }
 } // namespace rbc_ifem

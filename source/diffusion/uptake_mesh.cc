@@ -203,4 +203,37 @@ namespace rbc_ifem
       n += (owner == rank);
     return Utilities::MPI::sum(n, communicator);
   }
+  std::unique_ptr<CutCellGeometry>
+  build_cut_cell_geometry(UptakeMesh               &mesh,
+                          const GeometryParameters &geometry,
+                          const MembraneSurfaces   &surfaces,
+                          const unsigned int        degree,
+                          const bool                separate_insides,
+                          TimerOutput              &timer)
+  {
+    std::shared_ptr<const MembraneDistance> distance;
+    {
+      TimerOutput::Scope scope(timer, "diffusion: membrane sampling");
+      distance = std::make_shared<MembraneDistance>(surfaces.meshes(),
+                                                    surfaces.mapping(),
+                                                    geometry.period());
+    }
+    std::unique_ptr<CutCellGeometry> cut_cells;
+    mesh.build(surfaces,
+               [&](const parallel::TriangulationBase<3> &triangulation,
+                   const bool                            refine_ridges) {
+                 CutCellGeometry::Options options;
+                 options.refine_ridges    = refine_ridges;
+                 options.separate_insides = separate_insides;
+                 cut_cells =
+                   std::make_unique<CutCellGeometry>(triangulation,
+                                                     surfaces,
+                                                     distance,
+                                                     degree,
+                                                     geometry.period(),
+                                                     options,
+                                                     timer);
+               });
+    return cut_cells;
+  }
 } // namespace rbc_ifem

@@ -105,34 +105,14 @@ namespace rbc_ifem
         return [this](const unsigned int id) { return d.permeability(id); };
       }
 
-      /// Cut cells: the membranes sampled once for every attempt of the
-      /// mesh, and the geometry of the mesh that resolves them.
+      /// Cut cells: the geometry of the mesh that resolves the membranes.
       void
       build_cut_cells(const GeometryParameters &geometry,
                       const MembraneSurfaces   &surfaces,
                       const bool                separate_insides)
       {
-        {
-          TimerOutput::Scope scope(timer, "diffusion: membrane sampling");
-          distance = std::make_shared<MembraneDistance>(surfaces.meshes(),
-                                                        surfaces.mapping(),
-                                                        geometry.period());
-        }
-        mesh.build(surfaces,
-                   [&](const parallel::TriangulationBase<3> &triangulation,
-                       const bool                            refine_ridges) {
-                     CutCellGeometry::Options options;
-                     options.refine_ridges    = refine_ridges;
-                     options.separate_insides = separate_insides;
-                     cut_cells =
-                       std::make_unique<CutCellGeometry>(triangulation,
-                                                         surfaces,
-                                                         distance,
-                                                         d.degree,
-                                                         geometry.period(),
-                                                         options,
-                                                         timer);
-                   });
+        cut_cells = build_cut_cell_geometry(
+          mesh, geometry, surfaces, d.degree, separate_insides, timer);
       }
 
       /// The multiplier set up on the mesh; a mesh too coarse for the
@@ -186,10 +166,9 @@ namespace rbc_ifem
       const DiffusionParameters &d;
       TimerOutput               &timer;
       /// Declared first: what is set up on it goes first.
-      UptakeMesh                              mesh;
-      std::shared_ptr<const MembraneDistance> distance;
-      std::unique_ptr<CutCellGeometry>        cut_cells;
-      std::unique_ptr<DiffusionSolver>        sink_problem;
+      UptakeMesh                       mesh;
+      std::unique_ptr<CutCellGeometry> cut_cells;
+      std::unique_ptr<DiffusionSolver> sink_problem;
     };
 
     /// Add the DL of @p reacting to @p uptake.

@@ -15,6 +15,7 @@
 #include <rbc_ifem/experiments/registry.h>
 #include <rbc_ifem/experiments/shear_experiment.h>
 #include <rbc_ifem/experiments/stretching_experiment.h>
+#include <rbc_ifem/experiments/transit_experiment.h>
 
 #include <deal.II/base/exceptions.h>
 
@@ -110,7 +111,12 @@ namespace rbc_ifem
       entry_with<ShearExperiment, ShearParameters>(
         "shear",
         "a spherical capsule in simple shear for each Shear/Capillary "
-        "numbers (shear.csv per run, shear_summary.csv).")};
+        "numbers (shear.csv per run, shear_summary.csv)."),
+      entry_with<TransitExperiment, TransitParameters>(
+        "transit",
+        "O2 loading of the cells of subsection Layout over a capillary "
+        "transit of Transit/Duration, O2 and hemoglobin of subsection "
+        "Oxygen (o2.csv, o2_balance.csv, o2_summary.csv, VTU of P and S).")};
     return types;
   }
 

@@ -151,6 +151,48 @@ namespace rbc_ifem
     virtual void
     add_pressure_fields(DataOut<3> &data_out) const;
 
+    /**
+     * The pressure fields of a problem with fields inside the cells on
+     * @p cell: 0 (the plasma's) where it reaches into the plasma, and
+     * 1 + the colour of the red cell it reaches into, if any.
+     */
+    std::vector<unsigned int>
+    plasma_and_cell_fields(const Triangulation<3>::cell_iterator &cell) const;
+
+    /// The name of the flux map in the output: "co_flux".
+    virtual std::string
+    flux_name() const;
+
+    /**
+     * The fields on @p cell that are a pressure, which the membrane
+     * couples: fields_on(), unless a problem has fields that do not cross
+     * the membranes (CutCellOxygen's saturation).
+     */
+    virtual std::vector<unsigned int>
+    pressure_fields_on(const Triangulation<3>::cell_iterator &cell) const;
+
+    /// The matrix and right-hand side of the cell terms and the ghost
+    /// penalty, assembled, without the preconditioner.
+    void
+    assemble_operator();
+
+    /**
+     * Call @p f(values, cell) on every locally owned cell with fields,
+     * @p values the cut-cell values with @p flags reinit'ed on it: the
+     * loop of the assembly, for problems that integrate more.
+     */
+    void
+    for_each_field_cell(
+      const NonMatching::RegionUpdateFlags &flags,
+      const std::function<void(const NonMatching::FEValues<3> &,
+                               const DoFHandler<3>::active_cell_iterator &)> &f)
+      const;
+
+    /// The flows into the membranes and this rank's part of the flux map
+    /// (projections), from the solution.
+    void
+    compute_flows();
+
     const CutCellGeometry                    &geometry;
     const DiffusionParameters                 parameters;
     const std::function<double(unsigned int)> permeability;
@@ -160,6 +202,14 @@ namespace rbc_ifem
 
     DoFHandler<3>                 dof_handler;
     TrilinosWrappers::MPI::Vector solution;
+    IndexSet                      owned_dofs, relevant_dofs;
+    /// Hanging nodes, P = P_A on the pressure boundary, periodic ends and
+    /// the unused fields' DoFs held at zero.
+    AffineConstraints<double> constraints;
+    /// The operator of the cell terms and the ghost penalty, and its
+    /// right-hand side (P = P_A lifted).
+    TrilinosWrappers::SparseMatrix matrix;
+    TrilinosWrappers::MPI::Vector  rhs;
 
   private:
     /// The DoFs of this rank's cells (and their ghosts) that belong to a
@@ -193,10 +243,6 @@ namespace rbc_ifem
     template <typename Function>
     void
     for_each_ghost_penalty_face(const Function &f) const;
-    /// The flows into the membranes and this rank's part of the flux map
-    /// (projections), from the solution.
-    void
-    compute_flows();
     /// The consistent Nitsche flux j = −{αD ∂ₙP} + β [P] into the
     /// membrane at each point of @p surface, the membrane part of @p cell.
     std::vector<double>
@@ -206,12 +252,8 @@ namespace rbc_ifem
     /// FE_Q(k) or a system of fields, and FE_Nothing.
     hp::FECollection<3> fe_collection;
     /// The number of DoFs held at zero (unused_field_dofs()), on all ranks.
-    types::global_dof_index   n_unused_dofs = 0;
-    IndexSet                  owned_dofs, relevant_dofs;
-    AffineConstraints<double> constraints;
+    types::global_dof_index n_unused_dofs = 0;
 
-    TrilinosWrappers::SparseMatrix    matrix;
-    TrilinosWrappers::MPI::Vector     rhs;
     TrilinosWrappers::PreconditionAMG amg;
 
     /// The flux map's space, FE_Q<2,3>(1) on each membrane, and the

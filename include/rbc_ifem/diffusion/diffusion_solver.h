@@ -153,7 +153,8 @@ namespace rbc_ifem
      * Write the P field of @p data_out (patches built) as NAME_CCCC.pvtu and
      * the flux density @p flux (nodal, one vector per membrane, in
      * FE_Q<2,3>(1) on @p dof_handlers) as "co_flux" and "co_flux_vector" on
-     * @p membranes as NAME_membranes_CCCC.vtu.
+     * @p membranes as NAME_membranes_CCCC.vtu, the flux map there as
+     * @p flux_name (and FLUX_NAME_vector, the flux vector).
      */
     static OutputFiles
     write_fields(
@@ -166,7 +167,8 @@ namespace rbc_ifem
       const std::string                                    &name,
       const unsigned int                                    counter,
       const MPI_Comm                                        communicator,
-      const FieldData                                      &field_data);
+      const FieldData                                      &field_data,
+      const std::string                                    &flux_name);
 
     std::vector<double> flows;              ///< into each membrane
     double              alveolar_flow = 0.; ///< out of the P_A boundary

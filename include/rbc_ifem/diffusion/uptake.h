@@ -54,6 +54,10 @@ namespace rbc_ifem
   class UptakeFields
   {
   public:
+    /// The fields written as NAME_*.pvtu (or .vtu) under NAME.pvd, the
+    /// membranes under NAME_membranes.pvd.
+    explicit UptakeFields(const std::string &name = "diffusion");
+
     /**
      * Write the fields of @p diffusion, solved at @p time [s], as the
      * @p counter-th into @p directory, each file carrying @p field_data,
@@ -75,6 +79,7 @@ namespace rbc_ifem
     }
 
   private:
+    std::string                                 name;
     std::vector<std::pair<double, std::string>> pressure, membranes;
   };
 } // namespace rbc_ifem

@@ -1,6 +1,7 @@
 #ifndef rbc_ifem_diffusion_uptake_mesh_h
 #define rbc_ifem_diffusion_uptake_mesh_h
 
+#include <rbc_ifem/diffusion/cut_cell_geometry.h>
 #include <rbc_ifem/diffusion/parameters.h>
 #include <rbc_ifem/geometry/membrane_surfaces.h>
 #include <rbc_ifem/geometry/mesh_zone.h>
@@ -96,6 +97,21 @@ namespace rbc_ifem
     std::vector<std::vector<CellId>>                refinements;
     std::unique_ptr<parallel::TriangulationBase<3>> mesh;
   };
+
+  /**
+   * Build @p mesh around @p surfaces (UptakeMesh::build()) with a
+   * CutCellGeometry of degree @p degree on every attempt, the membranes
+   * sampled once (MembraneDistance) for all of them; with
+   * @p separate_insides the geometry a problem inside the cells needs.
+   * Returns the geometry of the mesh that resolves them.
+   */
+  std::unique_ptr<CutCellGeometry>
+  build_cut_cell_geometry(UptakeMesh               &mesh,
+                          const GeometryParameters &geometry,
+                          const MembraneSurfaces   &surfaces,
+                          const unsigned int        degree,
+                          const bool                separate_insides,
+                          TimerOutput              &timer);
 } // namespace rbc_ifem
 
 #endif

@@ -118,7 +118,8 @@ namespace
   /**
    * What an experiment needs besides its defaults to be valid: the shear
    * box is a multiple of the capsule's diameter, the finite uptake and the
-   * flowing layouts need cut cells, DM solves and a given time step. (That an
+   * flowing layouts need cut cells, DM solves and a given time step, the
+   * transit (for now) cells held in place. (That an
    * experiment's defaults alone do not run is issue 50's.)
    */
   std::string
@@ -128,6 +129,8 @@ namespace
       return "subsection Cells\n set Diameter = 6\nend\n";
     if (experiment == "finite uptake")
       return "subsection Diffusion\n set Method = cut cell\nend\n";
+    if (experiment == "transit")
+      return "subsection Transit\n set Cells flow = false\nend\n";
     if (experiment == "flowing layouts")
       return "subsection Immersed cells\n set Diffusion interval = 1\nend\n"
              "subsection Time\n set Time step = 3e-4\nend\n";
@@ -190,7 +193,9 @@ namespace
       {"Geometry/Capillary radius at 0.001",
        "Cell interactions/Wall range (0.3 µm) must be below it"},
       {"Shear/Total strain at 0.001",
-       "Shear/Averaging strain (0.5) must be below it"}};
+       "Shear/Averaging strain (0.5) must be below it"},
+      {"Transit/Duration at 0.001",
+       "at least one Transit/Time step (0.002 s)"}};
     return list;
   }
 } // namespace

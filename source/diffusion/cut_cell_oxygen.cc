@@ -1,0 +1,571 @@
+#include <rbc_ifem/base/solver_failure.h>
+#include <rbc_ifem/diffusion/cut_cell_oxygen.h>
+#include <rbc_ifem/diffusion/scaled_amg_solve.h>
+#include <rbc_ifem/diffusion/side_field.h>
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace rbc_ifem
+{
+  CutCellOxygen::CutCellOxygen(const CutCellGeometry     &geometry,
+                               const DiffusionParameters &parameters,
+                               const OxygenParameters    &oxygen,
+                               const OxygenBinding       &binding,
+                               const types::boundary_id   pressure_boundary,
+                               TimerOutput               &timer)
+    : CutCellProblem(
+        geometry,
+        [&] {
+          // P = P_A on the alveolar surface: the base's constraints.
+          DiffusionParameters d = parameters;
+          d.alveolar_pressure   = oxygen.alveolar_pressure;
+          return d;
+        }(),
+        [oxygen](const unsigned int id) { return oxygen.permeability(id); },
+        pressure_boundary,
+        timer)
+    , oxygen(oxygen)
+    , binding(binding)
+    , n_colours(geometry.n_colours())
+  {
+    if (n_colours == 0)
+      throw std::logic_error("CutCellOxygen needs a CutCellGeometry that "
+                             "separates the cells' insides.");
+    // Each output field is the component of the side the mesh cell is on.
+    const auto component = [this](const unsigned int which) {
+      return [this, which](const DoFHandler<3>::cell_iterator &cell) {
+        const std::vector<unsigned int> fields = fields_on(cell);
+        if (which == 0)
+          return fields.front() == 0 ? 0u : numbers::invalid_unsigned_int;
+        if (fields.back() == 0)
+          return numbers::invalid_unsigned_int;
+        return which == 1 ? fields.back() - n_colours : fields.back();
+      };
+    };
+    output_fields.push_back(std::make_unique<SideField>("po2", component(0)));
+    output_fields.push_back(
+      std::make_unique<SideField>("po2_cell", component(1)));
+    output_fields.push_back(
+      std::make_unique<SideField>("saturation", component(2)));
+    set_up_system(FESystem<3>(FE_Q<3>(parameters.degree), 1 + 2 * n_colours));
+  }
+
+  std::vector<unsigned int>
+  CutCellOxygen::fields_on(const Triangulation<3>::cell_iterator &cell) const
+  {
+    std::vector<unsigned int> fields = pressure_fields_on(cell);
+    if (fields.back() > 0)
+      fields.push_back(fields.back() + n_colours);
+    return fields;
+  }
+
+  std::vector<unsigned int>
+  CutCellOxygen::pressure_fields_on(
+    const Triangulation<3>::cell_iterator &cell) const
+  {
+    return plasma_and_cell_fields(cell);
+  }
+
+  NonMatching::RegionUpdateFlags
+  CutCellOxygen::assembly_flags() const
+  {
+    NonMatching::RegionUpdateFlags flags;
+    flags.inside = update_gradients | update_JxW_values;
+    // (add_cytoplasm_reaction() reads the values, at rate zero.)
+    flags.outside = update_values | update_gradients | update_JxW_values;
+    flags.surface = update_values | update_gradients | update_JxW_values |
+                    update_normal_vectors;
+    return flags;
+  }
+
+  void
+  CutCellOxygen::add_cell_terms(const NonMatching::FEValues<3> &values,
+                                const DoFHandler<3>::active_cell_iterator &cell,
+                                const CutCellShapes &shapes,
+                                FullMatrix<double>  &matrix) const
+  {
+    if (const auto &plasma = values.get_inside_fe_values())
+      add_plasma_diffusion(*plasma,
+                           permeability(cell->material_id()),
+                           shapes,
+                           matrix);
+    if (const auto &cytoplasm = values.get_outside_fe_values())
+      {
+        add_cytoplasm_reaction(*cytoplasm,
+                               field_permeability(1, cell),
+                               0.,
+                               shapes,
+                               matrix);
+        // S diffuses on the same part of the cell, in its own rows.
+        const FiniteElement<3> &fe         = cell->get_fe();
+        const unsigned int      saturation = fields_on(cell).back();
+        CutCellShapes           hemoglobin;
+        for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+          hemoglobin.side.push_back(
+            fe.system_to_component_index(i).first == saturation ? 1 : -1);
+        hemoglobin.jump_sign.assign(fe.n_dofs_per_cell(), 0.);
+        add_cytoplasm_reaction(*cytoplasm,
+                               field_permeability(saturation, cell),
+                               0.,
+                               hemoglobin,
+                               matrix);
+      }
+    if (const auto &membrane = values.get_surface_fe_values())
+      add_membrane_coupling(*membrane, membrane_coupling(cell), shapes, matrix);
+  }
+
+  MembraneCoupling
+  CutCellOxygen::membrane_coupling(
+    const DoFHandler<3>::active_cell_iterator &cell) const
+  {
+    // Hansbo's weights: the flux from the side with the larger αD.
+    const double gamma  = nitsche_weight(cell);
+    const double plasma = permeability(cell->material_id());
+    const double inside = field_permeability(1, cell);
+    const double w0 = inside / (plasma + inside), w1 = 1. - w0;
+    return {w0 * plasma,
+            w1 * inside,
+            2. * gamma * (w0 * w0 * plasma + w1 * w1 * inside)};
+  }
+
+  double
+  CutCellOxygen::field_permeability(
+    const unsigned int                         field,
+    const DoFHandler<3>::active_cell_iterator &cell) const
+  {
+    if (field == 0)
+      return CutCellProblem::field_permeability(field, cell);
+    if (field <= n_colours)
+      return oxygen.cytoplasm_solubility * oxygen.cytoplasm_diffusivity;
+    return oxygen.heme_capacity * oxygen.hemoglobin_diffusivity;
+  }
+
+  std::string
+  CutCellOxygen::flux_name() const
+  {
+    return "o2_flux";
+  }
+
+  void
+  CutCellOxygen::add_pressure_fields(DataOut<3> &data_out) const
+  {
+    for (const auto &field : output_fields)
+      data_out.add_data_vector(solution, *field);
+  }
+
+  Vector<double>
+  CutCellOxygen::lumped_capacities(
+    const NonMatching::FEValues<3>            &values,
+    const DoFHandler<3>::active_cell_iterator &cell) const
+  {
+    const FiniteElement<3> &fe = cell->get_fe();
+    Vector<double>          capacities(fe.n_dofs_per_cell());
+    // HRZ on each part: the diagonal of the part's mass matrix, scaled so
+    // that each field's entries sum to the part's volume.
+    const auto lump = [&](const FEValues<3>               &part,
+                          const std::vector<unsigned int> &fields,
+                          const std::vector<double>       &coefficients) {
+      double volume = 0.;
+      for (const unsigned int q : part.quadrature_point_indices())
+        volume += part.JxW(q);
+      for (unsigned int f = 0; f < fields.size(); ++f)
+        {
+          Vector<double> diagonal(fe.n_dofs_per_cell());
+          for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+            if (fe.system_to_component_index(i).first == fields[f])
+              for (const unsigned int q : part.quadrature_point_indices())
+                diagonal[i] += std::pow(part.shape_value(i, q), 2) * part.JxW(q);
+          const double sum = diagonal.l1_norm();
+          if (sum > 0.)
+            capacities.add(coefficients[f] * volume / sum, diagonal);
+        }
+    };
+    const std::vector<unsigned int> fields = fields_on(cell);
+    if (const auto &plasma = values.get_inside_fe_values())
+      lump(*plasma, {0}, {oxygen.solubility(cell->material_id())});
+    if (const auto &cytoplasm = values.get_outside_fe_values())
+      lump(*cytoplasm,
+           {fields.end()[-2], fields.back()},
+           {oxygen.cytoplasm_solubility, oxygen.heme_capacity});
+    return capacities;
+  }
+
+  void
+  CutCellOxygen::assemble()
+  {
+    assemble_operator();
+    TimerOutput::Scope scope(timer, "oxygen: capacities");
+    capacity.reinit(owned_dofs, communicator);
+    NonMatching::RegionUpdateFlags flags;
+    flags.inside  = update_values | update_JxW_values;
+    flags.outside = update_values | update_JxW_values;
+    std::vector<types::global_dof_index> dofs;
+    for_each_field_cell(flags, [&](const auto &values, const auto &cell) {
+      dofs.resize(cell->get_fe().n_dofs_per_cell());
+      cell->get_dof_indices(dofs);
+      add_to_free_dofs(lumped_capacities(values, cell), dofs, capacity);
+    });
+    capacity.compress(VectorOperation::add);
+    find_binding_pairs();
+  }
+
+  void
+  CutCellOxygen::add_to_free_dofs(const Vector<double>                       &local,
+                                  const std::vector<types::global_dof_index> &dofs,
+                                  TrilinosWrappers::MPI::Vector &global) const
+  {
+    // A hanging node's weights on Q2 include −1/8: distributed through the
+    // constraints as they are, a capacity can come out negative (it did, at
+    // 16 of 68,599 DoFs, and P's diagonal with it). Each constrained
+    // node's capacity goes to the nodes it hangs on by the weights' sizes
+    // instead, |c_j| / Σ|c_j|, which keeps the total; a node held at a
+    // value (P_A, or zero outside its field) has none.
+    for (unsigned int i = 0; i < dofs.size(); ++i)
+      {
+        const auto *line = constraints.get_constraint_entries(dofs[i]);
+        if (!constraints.is_constrained(dofs[i]))
+          global[dofs[i]] += local[i];
+        else if (line != nullptr && !line->empty())
+          {
+            double sum = 0.;
+            for (const auto &[dof, weight] : *line)
+              sum += std::abs(weight);
+            for (const auto &[dof, weight] : *line)
+              global[dof] += local[i] * std::abs(weight) / sum;
+          }
+      }
+  }
+
+  void
+  CutCellOxygen::find_binding_pairs()
+  {
+    binding_nodes.clear();
+    std::vector<types::global_dof_index> dofs;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      // A DoF this rank owns can lie on its ghost cells only.
+      if (!cell->is_artificial() && fields_on(cell).back() > n_colours)
+        {
+          const FiniteElement<3> &fe         = cell->get_fe();
+          const unsigned int      saturation = fields_on(cell).back();
+          dofs.resize(fe.n_dofs_per_cell());
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            if (fe.system_to_component_index(i).first == saturation &&
+                owned_dofs.is_element(dofs[i]) &&
+                !constraints.is_constrained(dofs[i]))
+              {
+                const unsigned int node = fe.system_to_component_index(i).second;
+                const unsigned int pressure =
+                  fe.component_to_system_index(saturation - n_colours, node);
+                binding_nodes.push_back(
+                  {dofs[pressure], dofs[i], geometry.inside_of(cell)});
+              }
+        }
+    const auto dof = [](const BindingNode &node) { return node.saturation; };
+    std::sort(binding_nodes.begin(),
+              binding_nodes.end(),
+              [&](const auto &a, const auto &b) { return dof(a) < dof(b); });
+    binding_nodes.erase(std::unique(binding_nodes.begin(),
+                                    binding_nodes.end(),
+                                    [&](const auto &a, const auto &b) {
+                                      return dof(a) == dof(b);
+                                    }),
+                        binding_nodes.end());
+  }
+
+  void
+  CutCellOxygen::start(const double pressure)
+  {
+    TrilinosWrappers::MPI::Vector u(owned_dofs, communicator);
+    const double saturation = binding.equilibrium_saturation(pressure);
+    std::vector<types::global_dof_index> dofs;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      // A DoF this rank owns can lie on its ghost cells only.
+      if (!cell->is_artificial() && !fields_on(cell).empty())
+        {
+          const FiniteElement<3> &fe = cell->get_fe();
+          dofs.resize(fe.n_dofs_per_cell());
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            if (owned_dofs.is_element(dofs[i]))
+              u[dofs[i]] = fe.system_to_component_index(i).first > n_colours ?
+                             saturation :
+                             pressure;
+        }
+    u.compress(VectorOperation::insert);
+    constraints.distribute(u);
+    fields = older_fields = u;
+    solution              = u;
+    current_time          = 0.;
+    n_steps               = 0;
+    wall = old_wall = 0.;
+  }
+
+  void
+  CutCellOxygen::solve()
+  {
+    throw std::logic_error("CutCellOxygen is solved in time: advance().");
+  }
+
+  void
+  CutCellOxygen::advance(const double time_step)
+  {
+    TimerOutput::Scope scope(timer, "oxygen: time step");
+    // BDF2, (3/2 uⁿ⁺¹ − 2 uⁿ + ½ uⁿ⁻¹)/Δt; BDF1 for the first step and
+    // after a change of the step.
+    const bool   first = n_steps == 0 || time_step != last_step;
+    const double sigma = first ? 1. : 1.5;
+    TrilinosWrappers::MPI::Vector history(fields);
+    if (!first)
+      history.sadd(2., -0.5, older_fields);
+    history.scale(capacity);
+    history /= time_step;
+    solve_step(sigma / time_step, history, first);
+
+    // The wall's O2 by the same rule, so that it and the amounts change
+    // alike: (σ Wⁿ⁺¹ − the history of W)/Δt = the inflow.
+    const double inflow = alveolar_inflow();
+    const double new_wall =
+      first ? wall + time_step * inflow :
+              (time_step * inflow + 2. * wall - 0.5 * old_wall) / sigma;
+    old_wall     = wall;
+    wall         = new_wall;
+    older_fields = fields;
+    fields       = solution;
+    current_time += time_step;
+    last_step = time_step;
+    ++n_steps;
+  }
+
+  void
+  CutCellOxygen::solve_step(const double                         sigma_over_dt,
+                            const TrilinosWrappers::MPI::Vector &history,
+                            const bool                           first)
+  {
+    TrilinosWrappers::MPI::Vector u(fields);
+    if (!first)
+      u.sadd(2., -1., older_fields); // the extrapolated start
+    const double scale = std::max(oxygen.alveolar_pressure, 1.);
+    newton_iterations  = 0;
+    linear_iterations  = 0;
+    double last_change = std::numeric_limits<double>::max();
+    for (;;)
+      {
+        step_matrix.copy_from(matrix);
+        TrilinosWrappers::MPI::Vector b(rhs);
+        b += history;
+        for (const auto i : owned_dofs)
+          if (capacity[i] > 0.)
+            step_matrix.add(i, i, sigma_over_dt * capacity[i]);
+        add_binding(u, b, step_matrix);
+        step_matrix.compress(VectorOperation::add);
+        b.compress(VectorOperation::add);
+        if (newton_iterations == 0)
+          preconditioner.initialize(step_matrix, binding_pairs(), parameters.degree);
+
+        TrilinosWrappers::MPI::Vector x(u);
+        SolverControl control(parameters.max_linear_iterations,
+                              parameters.linear_tolerance);
+        try
+          {
+            SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
+              control,
+              SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(50));
+            solve_scaled(
+              gmres, step_matrix, preconditioner, owned_dofs, b, x, control);
+          }
+        catch (const SolverControl::NoConvergence &e)
+          {
+            throw no_convergence("O2 transport (cut cells): GMRES",
+                                 e,
+                                 control.tolerance(),
+                                 "Raise Diffusion/Max linear iterations, or "
+                                 "shorten Transit/Time step.");
+          }
+        constraints.distribute(x);
+        linear_iterations += control.last_step();
+        ++newton_iterations;
+
+        // The change, P relative to P_A and S as it is.
+        TrilinosWrappers::MPI::Vector change(x);
+        change -= u;
+        double largest = change.linfty_norm() / scale;
+        for (const BindingNode &node : binding_nodes)
+          largest = std::max(largest, std::abs(change[node.saturation]));
+        largest = Utilities::MPI::max(largest, communicator);
+        u       = x;
+        if (!std::isfinite(largest))
+          throw SolverFailure("O2 transport: the fields are not finite.");
+        // Converged when the change (of P_A, or of S) is round-off, or when
+        // below 1e-6 it no longer falls fast: then it is what GMRES leaves
+        // (on two cells it stalled at 5e-8), or the residual at u already
+        // met GMRES's tolerance.
+        if (largest <= 1e-12 || control.last_step() == 0 ||
+            (largest <= 1e-6 && largest > 0.1 * last_change))
+          break;
+        last_change = largest;
+        if (newton_iterations == 20)
+          throw SolverFailure(
+            "O2 transport: Newton's method did not converge in 20 "
+            "iterations (last change " +
+            std::to_string(largest) + "). Shorten Transit/Time step.");
+      }
+    solution = u;
+  }
+
+  std::vector<std::pair<types::global_dof_index, types::global_dof_index>>
+  CutCellOxygen::binding_pairs() const
+  {
+    std::vector<std::pair<types::global_dof_index, types::global_dof_index>>
+      pairs;
+    for (const BindingNode &node : binding_nodes)
+      pairs.emplace_back(node.pressure, node.saturation);
+    return pairs;
+  }
+
+  void
+  CutCellOxygen::add_binding(const TrilinosWrappers::MPI::Vector &u,
+                             TrilinosWrappers::MPI::Vector       &b,
+                             TrilinosWrappers::SparseMatrix      &jacobian) const
+  {
+    // Per node, with w = C × the lumped volume (S's capacity): the binding
+    // w q leaves P₁'s row and enters S's, linearised at u:
+    // q ≈ q₀ + q_P P + q_S S. An iterate with S > 1 (the extrapolated
+    // start overshoots where S rose fast) has q_P < 0, which can make P₁'s
+    // diagonal negative: the Jacobian takes q_P ≥ 0 there, which changes
+    // Newton's path, not where it ends.
+    for (const BindingNode &node : binding_nodes)
+      {
+        const auto        p = node.pressure, s = node.saturation;
+        const double      w     = capacity[s];
+        const BindingRate rate  = binding.rate(u[p], u[s]);
+        const double      dq_dP = std::max(rate.dq_dP, 0.);
+        const double constant   = rate.q - dq_dP * u[p] - rate.dq_dS * u[s];
+        b[p] -= w * constant;
+        b[s] += w * constant;
+        jacobian.add(p, p, w * dq_dP);
+        jacobian.add(p, s, w * rate.dq_dS);
+        jacobian.add(s, p, -w * dq_dP);
+        jacobian.add(s, s, -w * rate.dq_dS);
+      }
+  }
+
+  double
+  CutCellOxygen::alveolar_inflow() const
+  {
+    // The rows held at P_A, unconstrained: Σ (K u) over their DoFs is what
+    // flows in there (their capacity times ∂P/∂t is zero).
+    std::vector<bool> pressure_only(1 + 2 * n_colours, false);
+    pressure_only[0]    = true;
+    const IndexSet held = DoFTools::extract_boundary_dofs(
+      dof_handler, ComponentMask(pressure_only), {pressure_boundary});
+    const FiniteElement<3>              &fe = dof_handler.get_fe(0);
+    FEValues<3>                          values(geometry.mapping(),
+                       fe,
+                       QGauss<3>(parameters.degree + 1),
+                       update_gradients | update_JxW_values);
+    const FEValuesExtractors::Scalar     pressure(0);
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    Vector<double>                       local(fe.n_dofs_per_cell());
+    std::vector<Tensor<1, 3>>            gradients(values.n_quadrature_points);
+    double                               inflow = 0.;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned() && cell->at_boundary() &&
+          cell->active_fe_index() == 0)
+        {
+          cell->get_dof_indices(dofs);
+          if (std::none_of(dofs.begin(), dofs.end(), [&](const auto dof) {
+                return held.is_element(dof);
+              }))
+            continue;
+          values.reinit(cell);
+          values[pressure].get_function_gradients(solution, gradients);
+          const double kappa = permeability(cell->material_id());
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            if (held.is_element(dofs[i]) &&
+                fe.system_to_component_index(i).first == 0)
+              for (const unsigned int q : values.quadrature_point_indices())
+                inflow += kappa * (gradients[q] * values[pressure].gradient(i, q)) *
+                          values.JxW(q);
+        }
+    return Utilities::MPI::sum(inflow, communicator);
+  }
+
+  double
+  CutCellOxygen::time() const
+  {
+    return current_time;
+  }
+
+  std::vector<CutCellOxygen::CellState>
+  CutCellOxygen::cell_states() const
+  {
+    // Per cell: volume, O2, ∫ S and ∫ P, summed over the ranks at once.
+    const unsigned int  n = geometry.membranes().size();
+    std::vector<double> sums(4 * n, 0.);
+    for (const BindingNode &node : binding_nodes)
+      {
+        const double volume = capacity[node.saturation] / oxygen.heme_capacity;
+        const double P = fields[node.pressure],
+                     S = fields[node.saturation];
+        sums[4 * node.cell] += volume;
+        sums[4 * node.cell + 1] += capacity[node.pressure] * P +
+                                   capacity[node.saturation] * S;
+        sums[4 * node.cell + 2] += volume * S;
+        sums[4 * node.cell + 3] += volume * P;
+      }
+    Utilities::MPI::sum(sums, communicator, sums);
+    std::vector<CellState> states(n);
+    for (unsigned int c = 0; c < n; ++c)
+      states[c] = {sums[4 * c],
+                   sums[4 * c + 1],
+                   sums[4 * c + 2] / sums[4 * c],
+                   sums[4 * c + 3] / sums[4 * c]};
+    return states;
+  }
+
+  CutCellOxygen::Amounts
+  CutCellOxygen::amounts() const
+  {
+    TrilinosWrappers::MPI::Vector o2(capacity);
+    o2.scale(fields);
+    double bound = 0.;
+    for (const BindingNode &node : binding_nodes)
+      bound += o2[node.saturation];
+    bound = Utilities::MPI::sum(bound, communicator);
+    double total = 0.;
+    for (const auto i : owned_dofs)
+      total += o2[i];
+    total = Utilities::MPI::sum(total, communicator);
+    return {total - bound, bound};
+  }
+
+  double
+  CutCellOxygen::wall_oxygen() const
+  {
+    return wall;
+  }
+
+  std::pair<unsigned int, unsigned int>
+  CutCellOxygen::last_iterations() const
+  {
+    return {newton_iterations, linear_iterations};
+  }
+
+  void
+  CutCellOxygen::update_flux_map()
+  {
+    compute_flows();
+  }
+} // namespace rbc_ifem

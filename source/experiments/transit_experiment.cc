@@ -1,0 +1,264 @@
+#include <rbc_ifem/base/csv.h>
+#include <rbc_ifem/base/input_error.h>
+#include <rbc_ifem/base/output.h>
+#include <rbc_ifem/base/output_error.h>
+#include <rbc_ifem/base/parameter_tools.h>
+#include <rbc_ifem/diffusion/cut_cell_oxygen.h>
+#include <rbc_ifem/diffusion/uptake.h>
+#include <rbc_ifem/diffusion/uptake_mesh.h>
+#include <rbc_ifem/experiments/registry.h>
+#include <rbc_ifem/experiments/transit_experiment.h>
+#include <rbc_ifem/geometry/capillary_mesh.h>
+
+#include <deal.II/base/timer.h>
+
+#include <cmath>
+#include <iomanip>
+#include <optional>
+#include <sstream>
+
+namespace rbc_ifem
+{
+  void
+  TransitParameters::add_parameters(ParameterHandler &prm)
+  {
+    oxygen.add_parameters(prm);
+    prm.enter_subsection("Transit");
+    add_parameter(prm,
+                  "Duration",
+                  duration,
+                  "Experiment 'transit': how long the cells are followed "
+                  "[s]: the capillary transit time, about 0.75 at rest and "
+                  "0.25-0.3 in heavy exercise.",
+                  GreaterThan());
+    add_parameter(prm,
+                  "Cells flow",
+                  cells_flow,
+                  "Experiment 'transit': true, the cells are carried by the "
+                  "plasma and deform (not built yet: the run stops with an "
+                  "error); false, they are held rigid where the layout puts "
+                  "them, in plasma at rest.");
+    add_parameter(prm,
+                  "Time step",
+                  time_step,
+                  "Experiment 'transit': the step of the O2 transport [s] "
+                  "(BDF2, the binding implicit); made a little shorter if "
+                  "it does not divide the Duration.",
+                  GreaterThan());
+    add_parameter(prm,
+                  "Output interval",
+                  output_interval,
+                  "Experiment 'transit': the rows of o2.csv and "
+                  "o2_balance.csv and the VTU of P and S every this long "
+                  "[s] (rounded to whole steps; at least one step), and at "
+                  "the end.",
+                  GreaterThan());
+    prm.leave_subsection();
+  }
+
+  void
+  TransitParameters::validate(const Parameters &parameters) const
+  {
+    if (parameters.diffusion.method != DiffusionMethod::cut_cell)
+      throw InputError("Diffusion/Method",
+                       "Lagrange multiplier",
+                       "experiment 'transit' solves for O2 inside the cells, "
+                       "which needs cut cell.");
+    if (duration < time_step)
+      throw InputError("Transit/Duration",
+                       exact_text(duration),
+                       "it must be at least one Transit/Time step (" +
+                         exact_text(time_step) + " s).");
+    if (cells_flow)
+      throw InputError("Transit/Cells flow",
+                       "true",
+                       "flowing, deforming cells are not built yet in "
+                       "experiment 'transit': set false to hold the cells "
+                       "rigid where the layout puts them.");
+  }
+
+  namespace
+  {
+    /// Each cell's time to 95% of its rise to the equilibrium saturation,
+    /// from the rows of o2.csv as they come.
+    class RiseTimes
+    {
+    public:
+      RiseTimes(const std::vector<double> &start, const double target)
+        : start(start)
+        , target(target)
+        , times(start.size())
+      {}
+
+      /// The cells' saturations @p saturations at @p time.
+      void
+      add(const double time, const std::vector<double> &saturations)
+      {
+        for (unsigned int c = 0; c < start.size(); ++c)
+          if (!times[c] && std::abs(saturations[c] - start[c]) >=
+                             0.95 * std::abs(target - start[c]))
+            times[c] = time;
+      }
+
+      /// The time of cell @p c, empty if it has not risen so far.
+      std::string
+      text(const unsigned int c) const
+      {
+        return times[c] ? exact_text(*times[c]) : "";
+      }
+
+    private:
+      const std::vector<double>          start;
+      const double                       target;
+      std::vector<std::optional<double>> times;
+    };
+  } // namespace
+
+  TransitExperiment::TransitExperiment(const ExperimentContext &context,
+                                       const TransitParameters &transit)
+    : Experiment(context, ParametersFile::before_work)
+    , transit(transit)
+  {}
+
+  void
+  TransitExperiment::setup()
+  {
+    cells =
+      std::make_unique<const PlacedCells>(parameters.layout,
+                                          parameters.geometry,
+                                          parameters.cells,
+                                          parameters.cells.surface_refinements);
+  }
+
+  void
+  TransitExperiment::execute()
+  {
+    const std::string &directory = parameters.output_directory;
+    UptakeMesh         mesh(parameters.geometry,
+                    parameters.mesh,
+                    DiffusionMethod::cut_cell,
+                    communicator,
+                    timer);
+    const auto         geometry =
+      build_cut_cell_geometry(mesh,
+                              parameters.geometry,
+                              cells->membranes.membrane_surfaces(),
+                              parameters.diffusion.degree,
+                              true,
+                              timer);
+    const HillBinding binding = transit.oxygen.binding();
+    CutCellOxygen     o2(*geometry,
+                     parameters.diffusion,
+                     transit.oxygen,
+                     binding,
+                     DiffusionBoundary::alveolar_surface,
+                     timer);
+    o2.assemble();
+    o2.start(transit.oxygen.venous_pressure);
+
+    // Whole steps: the step shortened to divide the duration.
+    const unsigned int n_steps = static_cast<unsigned int>(
+      std::ceil(transit.duration / transit.time_step - 1e-9));
+    const double       time_step = transit.duration / n_steps;
+    const unsigned int every =
+      std::max(1u,
+               static_cast<unsigned int>(
+                 std::round(transit.output_interval / time_step)));
+    pcout << "Transit: " << cells->membranes.size() << " cells, "
+          << o2.n_dofs() << " DoFs, " << n_steps << " steps of "
+          << time_step << " s, P_A " << transit.oxygen.alveolar_pressure
+          << " Torr, P_v " << transit.oxygen.venous_pressure << " Torr"
+          << std::endl;
+
+    CsvTable o2_table("time,cell,saturation,mean_po2,uptake_rate");
+    CsvTable balance("time,dissolved,bound,wall_oxygen,balance_error");
+    const CutCellOxygen::Amounts start_amounts = o2.amounts();
+    const double start_total = start_amounts.dissolved + start_amounts.bound;
+    std::vector<CutCellOxygen::CellState> states = o2.cell_states(), old;
+    std::vector<double>                   start_saturation;
+    for (const auto &state : states)
+      start_saturation.push_back(state.saturation);
+    RiseTimes rise(start_saturation,
+                   binding.equilibrium_saturation(
+                     transit.oxygen.alveolar_pressure));
+    // The O2 per cell at the last two steps, for the uptake rates (BDF2's
+    // derivative, as the scheme's own).
+    std::vector<double> oxygen(states.size()), older(states.size());
+    for (unsigned int c = 0; c < states.size(); ++c)
+      oxygen[c] = older[c] = states[c].oxygen;
+
+    UptakeFields fields("o2");
+    create_output_directory(directory, communicator);
+    write_on_rank_0(communicator, [&]() {
+      cells->membranes.table().write(directory + "/cells.csv");
+    });
+    Timer clock;
+    for (unsigned int step = 1; step <= n_steps; ++step)
+      {
+        o2.advance(time_step);
+        states = o2.cell_states();
+        std::vector<double> rates, saturations;
+        for (unsigned int c = 0; c < states.size(); ++c)
+          {
+            const double now = states[c].oxygen;
+            rates.push_back(step == 1 ? (now - oxygen[c]) / time_step :
+                                        (1.5 * now - 2. * oxygen[c] +
+                                         0.5 * older[c]) /
+                                          time_step);
+            older[c]  = oxygen[c];
+            oxygen[c] = now;
+            saturations.push_back(states[c].saturation);
+          }
+        rise.add(o2.time(), saturations);
+        if (step % every != 0 && step != n_steps)
+          continue;
+
+        const CutCellOxygen::Amounts amounts = o2.amounts();
+        const double change = amounts.dissolved + amounts.bound - start_total;
+        const double error =
+          (change - o2.wall_oxygen()) / std::abs(o2.wall_oxygen());
+        double mean_saturation = 0., volume = 0.;
+        for (unsigned int c = 0; c < states.size(); ++c)
+          {
+            o2_table.add(o2.time(),
+                         c,
+                         states[c].saturation,
+                         states[c].pressure,
+                         rates[c]);
+            mean_saturation += states[c].saturation * states[c].volume;
+            volume += states[c].volume;
+          }
+        balance.add(o2.time(),
+                    amounts.dissolved,
+                    amounts.bound,
+                    o2.wall_oxygen(),
+                    error);
+        o2.update_flux_map();
+        fields.write(o2, directory, o2.time(), step / every, communicator);
+        write_on_rank_0(communicator, [&]() {
+          o2_table.write(directory + "/o2.csv");
+          balance.write(directory + "/o2_balance.csv");
+        });
+        const auto [newton, gmres] = o2.last_iterations();
+        pcout << "  t = " << std::setprecision(4) << o2.time()
+              << " s: mean S " << std::setprecision(5)
+              << mean_saturation / volume << ", O2 balance "
+              << std::setprecision(2) << error << ", Newton " << newton
+              << ", GMRES " << gmres << " "
+              << time_left_text(clock.wall_time(), step, n_steps - step)
+              << std::endl;
+      }
+
+    CsvTable summary(
+      "cell,start_saturation,end_saturation,end_mean_po2,time_to_95");
+    for (unsigned int c = 0; c < states.size(); ++c)
+      summary.add(c,
+                  start_saturation[c],
+                  states[c].saturation,
+                  states[c].pressure,
+                  rise.text(c));
+    write_on_rank_0(communicator, [&]() {
+      summary.write(directory + "/o2_summary.csv");
+    });
+  }
+} // namespace rbc_ifem

@@ -6,13 +6,14 @@ namespace rbc_ifem
   void
   BindingPreconditioner::initialize(
     const TrilinosWrappers::SparseMatrix &matrix,
-    const std::vector<std::pair<types::global_dof_index,
-                                types::global_dof_index>> &pairs,
-    const unsigned int                                      degree)
+    const std::vector<
+      std::pair<types::global_dof_index, types::global_dof_index>> &pairs,
+    const unsigned int                                              degree)
   {
     nodes.clear();
     for (const auto &[p, s] : pairs)
-      nodes.push_back({p, s, matrix.el(p, s), matrix.el(s, p), matrix.el(s, s)});
+      nodes.push_back(
+        {p, s, matrix.el(p, s), matrix.el(s, p), matrix.el(s, s)});
     // A without the binding's coupling, Ŝ's shift on P₁'s diagonal.
     decoupled.copy_from(matrix);
     for (const Node &node : nodes)

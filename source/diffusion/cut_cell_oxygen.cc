@@ -102,11 +102,8 @@ namespace rbc_ifem
                            matrix);
     if (const auto &cytoplasm = values.get_outside_fe_values())
       {
-        add_cytoplasm_reaction(*cytoplasm,
-                               field_permeability(1, cell),
-                               0.,
-                               shapes,
-                               matrix);
+        add_cytoplasm_reaction(
+          *cytoplasm, field_permeability(1, cell), 0., shapes, matrix);
         // S diffuses on the same part of the cell, in its own rows.
         const FiniteElement<3> &fe         = cell->get_fe();
         const unsigned int      saturation = fields_on(cell).back();
@@ -185,7 +182,8 @@ namespace rbc_ifem
           for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
             if (fe.system_to_component_index(i).first == fields[f])
               for (const unsigned int q : part.quadrature_point_indices())
-                diagonal[i] += std::pow(part.shape_value(i, q), 2) * part.JxW(q);
+                diagonal[i] +=
+                  std::pow(part.shape_value(i, q), 2) * part.JxW(q);
           const double sum = diagonal.l1_norm();
           if (sum > 0.)
             capacities.add(coefficients[f] * volume / sum, diagonal);
@@ -221,9 +219,10 @@ namespace rbc_ifem
   }
 
   void
-  CutCellOxygen::add_to_free_dofs(const Vector<double>                       &local,
-                                  const std::vector<types::global_dof_index> &dofs,
-                                  TrilinosWrappers::MPI::Vector &global) const
+  CutCellOxygen::add_to_free_dofs(
+    const Vector<double>                       &local,
+    const std::vector<types::global_dof_index> &dofs,
+    TrilinosWrappers::MPI::Vector              &global) const
   {
     // A hanging node's weights on Q2 include −1/8: distributed through the
     // constraints as they are, a capacity can come out negative (it did, at
@@ -265,9 +264,13 @@ namespace rbc_ifem
                 owned_dofs.is_element(dofs[i]) &&
                 !constraints.is_constrained(dofs[i]))
               {
-                const unsigned int node = fe.system_to_component_index(i).second;
+                const unsigned int node =
+                  fe.system_to_component_index(i).second;
                 const unsigned int pressure =
                   fe.component_to_system_index(saturation - n_colours, node);
+                // deal.II gives all components at a node one owner.
+                Assert(owned_dofs.is_element(dofs[pressure]),
+                       ExcInternalError());
                 binding_nodes.push_back(
                   {dofs[pressure], dofs[i], geometry.inside_of(cell)});
               }
@@ -372,10 +375,12 @@ namespace rbc_ifem
         step_matrix.compress(VectorOperation::add);
         b.compress(VectorOperation::add);
         if (newton_iterations == 0)
-          preconditioner.initialize(step_matrix, binding_pairs(), parameters.degree);
+          preconditioner.initialize(step_matrix,
+                                    binding_pairs(),
+                                    parameters.degree);
 
         TrilinosWrappers::MPI::Vector x(u);
-        SolverControl control(parameters.max_linear_iterations,
+        SolverControl                 control(parameters.max_linear_iterations,
                               parameters.linear_tolerance);
         try
           {
@@ -400,13 +405,14 @@ namespace rbc_ifem
         // The change, P relative to P_A and S as it is.
         TrilinosWrappers::MPI::Vector change(x);
         change -= u;
+        // (A NaN would slip through the maxima: l2_norm() sums it.)
+        if (!std::isfinite(change.l2_norm()))
+          throw SolverFailure("O2 transport: the fields are not finite.");
         double largest = change.linfty_norm() / scale;
         for (const BindingNode &node : binding_nodes)
           largest = std::max(largest, std::abs(change[node.saturation]));
         largest = Utilities::MPI::max(largest, communicator);
         u       = x;
-        if (!std::isfinite(largest))
-          throw SolverFailure("O2 transport: the fields are not finite.");
         // Converged when the change (of P_A, or of S) is round-off, or when
         // below 1e-6 it no longer falls fast: then it is what GMRES leaves
         // (on two cells it stalled at 5e-8), or the residual at u already
@@ -437,7 +443,7 @@ namespace rbc_ifem
   void
   CutCellOxygen::add_binding(const TrilinosWrappers::MPI::Vector &u,
                              TrilinosWrappers::MPI::Vector       &b,
-                             TrilinosWrappers::SparseMatrix      &jacobian) const
+                             TrilinosWrappers::SparseMatrix &jacobian) const
   {
     // Per node, with w = C × the lumped volume (S's capacity): the binding
     // w q leaves P₁'s row and enters S's, linearised at u:
@@ -448,10 +454,10 @@ namespace rbc_ifem
     for (const BindingNode &node : binding_nodes)
       {
         const auto        p = node.pressure, s = node.saturation;
-        const double      w     = capacity[s];
-        const BindingRate rate  = binding.rate(u[p], u[s]);
-        const double      dq_dP = std::max(rate.dq_dP, 0.);
-        const double constant   = rate.q - dq_dP * u[p] - rate.dq_dS * u[s];
+        const double      w        = capacity[s];
+        const BindingRate rate     = binding.rate(u[p], u[s]);
+        const double      dq_dP    = std::max(rate.dq_dP, 0.);
+        const double      constant = rate.q - dq_dP * u[p] - rate.dq_dS * u[s];
         b[p] -= w * constant;
         b[s] += w * constant;
         jacobian.add(p, p, w * dq_dP);
@@ -467,9 +473,11 @@ namespace rbc_ifem
     // The rows held at P_A, unconstrained: Σ (K u) over their DoFs is what
     // flows in there (their capacity times ∂P/∂t is zero).
     std::vector<bool> pressure_only(1 + 2 * n_colours, false);
-    pressure_only[0]    = true;
-    const IndexSet held = DoFTools::extract_boundary_dofs(
-      dof_handler, ComponentMask(pressure_only), {pressure_boundary});
+    pressure_only[0] = true;
+    const IndexSet held =
+      DoFTools::extract_boundary_dofs(dof_handler,
+                                      ComponentMask(pressure_only),
+                                      {pressure_boundary});
     const FiniteElement<3>              &fe = dof_handler.get_fe(0);
     FEValues<3>                          values(geometry.mapping(),
                        fe,
@@ -489,6 +497,11 @@ namespace rbc_ifem
                 return held.is_element(dof);
               }))
             continue;
+          // Its rows are those of the plasma's diffusion on a whole cell:
+          // the alveolar surface is far from every membrane, so no cell
+          // there is cut or has a ghost penalty.
+          AssertThrow(!geometry.is_cut(cell),
+                      ExcMessage("A cut cell touches the alveolar surface."));
           values.reinit(cell);
           values[pressure].get_function_gradients(solution, gradients);
           const double kappa = permeability(cell->material_id());
@@ -496,7 +509,8 @@ namespace rbc_ifem
             if (held.is_element(dofs[i]) &&
                 fe.system_to_component_index(i).first == 0)
               for (const unsigned int q : values.quadrature_point_indices())
-                inflow += kappa * (gradients[q] * values[pressure].gradient(i, q)) *
+                inflow += kappa *
+                          (gradients[q] * values[pressure].gradient(i, q)) *
                           values.JxW(q);
         }
     return Utilities::MPI::sum(inflow, communicator);
@@ -517,21 +531,25 @@ namespace rbc_ifem
     for (const BindingNode &node : binding_nodes)
       {
         const double volume = capacity[node.saturation] / oxygen.heme_capacity;
-        const double P = fields[node.pressure],
-                     S = fields[node.saturation];
+        const double P = fields[node.pressure], S = fields[node.saturation];
         sums[4 * node.cell] += volume;
-        sums[4 * node.cell + 1] += capacity[node.pressure] * P +
-                                   capacity[node.saturation] * S;
+        sums[4 * node.cell + 1] +=
+          capacity[node.pressure] * P + capacity[node.saturation] * S;
         sums[4 * node.cell + 2] += volume * S;
         sums[4 * node.cell + 3] += volume * P;
       }
     Utilities::MPI::sum(sums, communicator, sums);
     std::vector<CellState> states(n);
+    // Every cell has nodes in the mesh that resolves it; the guard keeps a
+    // degenerate one from writing NaN.
     for (unsigned int c = 0; c < n; ++c)
-      states[c] = {sums[4 * c],
-                   sums[4 * c + 1],
-                   sums[4 * c + 2] / sums[4 * c],
-                   sums[4 * c + 3] / sums[4 * c]};
+      {
+        const double volume = std::max(sums[4 * c], 1e-300);
+        states[c]           = {sums[4 * c],
+                               sums[4 * c + 1],
+                               sums[4 * c + 2] / volume,
+                               sums[4 * c + 3] / volume};
+      }
     return states;
   }
 
@@ -543,7 +561,7 @@ namespace rbc_ifem
     double bound = 0.;
     for (const BindingNode &node : binding_nodes)
       bound += o2[node.saturation];
-    bound = Utilities::MPI::sum(bound, communicator);
+    bound        = Utilities::MPI::sum(bound, communicator);
     double total = 0.;
     for (const auto i : owned_dofs)
       total += o2[i];

@@ -20,7 +20,9 @@ namespace rbc_ifem
     if (P <= 0.)
       return {-k_d * S, 0., -k_d};
     const double x = std::pow(P / p50, n);
-    return {k_d * ((1. - S) * x - S), k_d * (1. - S) * n * x / P, -k_d * (x + 1.)};
+    return {k_d * ((1. - S) * x - S),
+            k_d * (1. - S) * n * x / P,
+            -k_d * (x + 1.)};
   }
 
   double
@@ -109,21 +111,25 @@ namespace rbc_ifem
                   "Dissociation rate",
                   dissociation_rate,
                   "k_d of q = k_d [(1 − S)(P/P50)^n − S], the rate of the "
-                  "saturation's change [s⁻¹] (" + source + ").",
+                  "saturation's change [s⁻¹] (" +
+                    source + ").",
                   GreaterThan());
     add_parameter(prm,
                   "Heme capacity",
                   heme_capacity,
                   "C_Hb: the O2 the cytoplasm binds at S = 1 [µm³ O2 (STPD) "
                   "per µm³ of cytoplasm]: 20.3 mol heme per m³ times "
-                  "22,400 mL/mol (" + source + ").",
+                  "22,400 mL/mol (" +
+                    source + ").",
                   GreaterThan());
     add_parameter(prm,
                   "Hemoglobin diffusivity",
                   hemoglobin_diffusivity,
-                  "D_Hb of the saturation inside the cells [µm²/s]; 0 holds "
-                  "each point's hemoglobin in place (" + source + ").",
-                  Patterns::Double(0.));
+                  "D_Hb of the saturation inside the cells [µm²/s], > 0 "
+                  "(the S rows need it: a cut cell's sliver of S is held "
+                  "where its rows are round-off) (" +
+                    source + ").",
+                  GreaterThan());
     const auto add_material = [&](const std::string &name,
                                   double            &solubility,
                                   double            &diffusivity,
@@ -143,8 +149,10 @@ namespace rbc_ifem
                       " [µm²/s] (" + from + ").",
                     GreaterThan());
     };
-    add_material("Plasma", plasma_solubility, plasma_diffusivity, "plasma", source);
-    add_material("Wall", wall_solubility, wall_diffusivity, "vessel wall", source);
+    add_material(
+      "Plasma", plasma_solubility, plasma_diffusivity, "plasma", source);
+    add_material(
+      "Wall", wall_solubility, wall_diffusivity, "vessel wall", source);
     add_material("Cytoplasm",
                  cytoplasm_solubility,
                  cytoplasm_diffusivity,

@@ -94,9 +94,11 @@ namespace rbc_ifem
       void
       add(const double time, const std::vector<double> &saturations)
       {
+        // A cell already at the target (P_v = P_A) has no rise to time.
         for (unsigned int c = 0; c < start.size(); ++c)
-          if (!times[c] && std::abs(saturations[c] - start[c]) >=
-                             0.95 * std::abs(target - start[c]))
+          if (!times[c] && std::abs(target - start[c]) > 1e-12 &&
+              std::abs(saturations[c] - start[c]) >=
+                0.95 * std::abs(target - start[c]))
             times[c] = time;
       }
 
@@ -164,11 +166,10 @@ namespace rbc_ifem
       std::max(1u,
                static_cast<unsigned int>(
                  std::round(transit.output_interval / time_step)));
-    pcout << "Transit: " << cells->membranes.size() << " cells, "
-          << o2.n_dofs() << " DoFs, " << n_steps << " steps of "
-          << time_step << " s, P_A " << transit.oxygen.alveolar_pressure
-          << " Torr, P_v " << transit.oxygen.venous_pressure << " Torr"
-          << std::endl;
+    pcout << "Transit: " << cells->membranes.size() << " cells, " << o2.n_dofs()
+          << " DoFs, " << n_steps << " steps of " << time_step << " s, P_A "
+          << transit.oxygen.alveolar_pressure << " Torr, P_v "
+          << transit.oxygen.venous_pressure << " Torr" << std::endl;
 
     CsvTable o2_table("time,cell,saturation,mean_po2,uptake_rate");
     CsvTable balance("time,dissolved,bound,wall_oxygen,balance_error");
@@ -192,7 +193,8 @@ namespace rbc_ifem
     write_on_rank_0(communicator, [&]() {
       cells->membranes.table().write(directory + "/cells.csv");
     });
-    Timer clock;
+    Timer        clock;
+    unsigned int n_outputs = 0;
     for (unsigned int step = 1; step <= n_steps; ++step)
       {
         o2.advance(time_step);
@@ -201,10 +203,10 @@ namespace rbc_ifem
         for (unsigned int c = 0; c < states.size(); ++c)
           {
             const double now = states[c].oxygen;
-            rates.push_back(step == 1 ? (now - oxygen[c]) / time_step :
-                                        (1.5 * now - 2. * oxygen[c] +
-                                         0.5 * older[c]) /
-                                          time_step);
+            rates.push_back(step == 1 ?
+                              (now - oxygen[c]) / time_step :
+                              (1.5 * now - 2. * oxygen[c] + 0.5 * older[c]) /
+                                time_step);
             older[c]  = oxygen[c];
             oxygen[c] = now;
             saturations.push_back(states[c].saturation);
@@ -215,36 +217,31 @@ namespace rbc_ifem
 
         const CutCellOxygen::Amounts amounts = o2.amounts();
         const double change = amounts.dissolved + amounts.bound - start_total;
-        const double error =
-          (change - o2.wall_oxygen()) / std::abs(o2.wall_oxygen());
+        // Relative to the larger of what entered and what the mesh held at
+        // the start: what entered is zero when P_v = P_A.
+        const double error = (change - o2.wall_oxygen()) /
+                             std::max(std::abs(o2.wall_oxygen()), start_total);
         double mean_saturation = 0., volume = 0.;
         for (unsigned int c = 0; c < states.size(); ++c)
           {
-            o2_table.add(o2.time(),
-                         c,
-                         states[c].saturation,
-                         states[c].pressure,
-                         rates[c]);
+            o2_table.add(
+              o2.time(), c, states[c].saturation, states[c].pressure, rates[c]);
             mean_saturation += states[c].saturation * states[c].volume;
             volume += states[c].volume;
           }
-        balance.add(o2.time(),
-                    amounts.dissolved,
-                    amounts.bound,
-                    o2.wall_oxygen(),
-                    error);
+        balance.add(
+          o2.time(), amounts.dissolved, amounts.bound, o2.wall_oxygen(), error);
         o2.update_flux_map();
-        fields.write(o2, directory, o2.time(), step / every, communicator);
+        fields.write(o2, directory, o2.time(), ++n_outputs, communicator);
         write_on_rank_0(communicator, [&]() {
           o2_table.write(directory + "/o2.csv");
           balance.write(directory + "/o2_balance.csv");
         });
         const auto [newton, gmres] = o2.last_iterations();
-        pcout << "  t = " << std::setprecision(4) << o2.time()
-              << " s: mean S " << std::setprecision(5)
-              << mean_saturation / volume << ", O2 balance "
-              << std::setprecision(2) << error << ", Newton " << newton
-              << ", GMRES " << gmres << " "
+        pcout << "  t = " << std::setprecision(4) << o2.time() << " s: mean S "
+              << std::setprecision(5) << mean_saturation / volume
+              << ", O2 balance " << std::setprecision(2) << error << ", Newton "
+              << newton << ", GMRES " << gmres << " "
               << time_left_text(clock.wall_time(), step, n_steps - step)
               << std::endl;
       }
@@ -257,8 +254,7 @@ namespace rbc_ifem
                   states[c].saturation,
                   states[c].pressure,
                   rise.text(c));
-    write_on_rank_0(communicator, [&]() {
-      summary.write(directory + "/o2_summary.csv");
-    });
+    write_on_rank_0(communicator,
+                    [&]() { summary.write(directory + "/o2_summary.csv"); });
   }
 } // namespace rbc_ifem

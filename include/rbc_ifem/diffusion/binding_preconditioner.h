@@ -26,8 +26,10 @@ namespace rbc_ifem
    *
    *   y_P = Ŝ⁻¹ (r_P − B D⁻¹ r_S),   y_S = A_SS⁻¹ (r_S − E y_P),
    *
-   * D the diagonal of A_SS and Ŝ = A_PP − B D⁻¹ E (a positive shift of
-   * A_PP's diagonal), is exact but for D standing in for A_SS; Ŝ and A_SS
+   * D the diagonal of A_SS and Ŝ = A_PP − B D⁻¹ E (A_PP's diagonal
+   * shifted by −BE/D = w² q_S q_P / D ≤ 0, which leaves it larger than
+   * without the binding: w q_P (D − w|q_S|)/D ≥ 0 is what remains of the
+   * binding's share), is exact but for D standing in for A_SS; Ŝ and A_SS
    * are the two blocks of one symmetric positive definite matrix, A
    * without B and E and with the shift, and one AMG V-cycle of it applies
    * either. Two V-cycles per application.
@@ -41,11 +43,10 @@ namespace rbc_ifem
      * @p degree.
      */
     void
-    initialize(
-      const TrilinosWrappers::SparseMatrix &matrix,
-      const std::vector<std::pair<types::global_dof_index,
-                                  types::global_dof_index>> &pairs,
-      const unsigned int                                      degree);
+    initialize(const TrilinosWrappers::SparseMatrix                  &matrix,
+               const std::vector<std::pair<types::global_dof_index,
+                                           types::global_dof_index>> &pairs,
+               const unsigned int                                     degree);
 
     /// dst = the preconditioner applied to src.
     void

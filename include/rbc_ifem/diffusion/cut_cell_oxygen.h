@@ -232,7 +232,7 @@ namespace rbc_ifem
     BindingPreconditioner          preconditioner;
 
     double       current_time = 0., last_step = 0.;
-    unsigned int n_steps      = 0;
+    unsigned int n_steps = 0;
     /// The wall's O2 (since start()) at the last two steps [µm³ O2].
     double       wall = 0., old_wall = 0.;
     unsigned int newton_iterations = 0, linear_iterations = 0;

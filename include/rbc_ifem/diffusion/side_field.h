@@ -29,9 +29,8 @@ namespace rbc_ifem
     {}
 
     void
-    evaluate_vector_field(
-      const DataPostprocessorInputs::Vector<3> &inputs,
-      std::vector<Vector<double>>              &computed) const override
+    evaluate_vector_field(const DataPostprocessorInputs::Vector<3> &inputs,
+                          std::vector<Vector<double>> &computed) const override
     {
       const unsigned int field = field_on(inputs.template get_cell<3>());
       for (unsigned int q = 0; q < computed.size(); ++q)

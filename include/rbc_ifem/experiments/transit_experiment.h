@@ -16,7 +16,7 @@ namespace rbc_ifem
   struct TransitParameters : public ExperimentParameters
   {
     OxygenParameters oxygen;
-    double           duration        = 0.75;  ///< [s]
+    double           duration        = 0.75; ///< [s]
     bool             cells_flow      = true;
     double           time_step       = 0.002; ///< [s]
     double           output_interval = 0.05;  ///< [s]
@@ -41,7 +41,8 @@ namespace rbc_ifem
    * volume means and the O2 through its membrane [µm³ O2/s]),
    * o2_balance.csv (time,dissolved,bound,wall_oxygen,balance_error: the O2
    * in the mesh, what entered through the alveolar surface since the
-   * start [µm³ O2], and their mismatch relative to the latter),
+   * start [µm³ O2], and their mismatch relative to the larger of the
+   * latter and the O2 in the mesh at the start),
    * o2_summary.csv (each cell's time to 95% of its rise to the
    * saturation in equilibrium with P_A, its end saturation and mean
    * PO2), cells.csv, and VTU of P and S (o2.pvd, o2_membranes.pvd with the

@@ -39,7 +39,7 @@ using namespace rbc_ifem;
 namespace
 {
   const oxygen_sphere_series::Parameters defaults;
-  const double a = defaults.a, b = defaults.b;
+  const double                           a = defaults.a, b = defaults.b;
 
   /// q = k (λ P − S).
   class LinearBinding : public OxygenBinding
@@ -101,8 +101,8 @@ namespace
 
   struct Run
   {
-    double       uptake;        ///< the cell's O2 at the end less at the start
-    double       worst_balance; ///< the largest relative O2 imbalance
+    double uptake;        ///< the cell's O2 at the end less at the start
+    double worst_balance; ///< the largest relative O2 imbalance
     CutCellOxygen::CellState start, end;
     unsigned long            n_dofs;
   };
@@ -115,12 +115,12 @@ namespace
             const double            time_step,
             const unsigned int      n_steps)
   {
-    TimerOutput            timer(MPI_COMM_WORLD,
+    TimerOutput              timer(MPI_COMM_WORLD,
                       std::cout,
                       TimerOutput::never,
                       TimerOutput::wall_times);
-    const MappingQ<2, 3>   membrane_mapping(2);
-    const MembraneSurfaces membranes({&meshes.membrane}, membrane_mapping);
+    const MappingQ<2, 3>     membrane_mapping(2);
+    const MembraneSurfaces   membranes({&meshes.membrane}, membrane_mapping);
     CutCellGeometry::Options options;
     options.refine_ridges    = false; // the sphere's centre is a ridge
     options.separate_insides = true;
@@ -139,7 +139,7 @@ namespace
     o2.assemble();
     o2.start(oxygen.venous_pressure);
     const CutCellOxygen::Amounts amounts = o2.amounts();
-    const double start_total = amounts.dissolved + amounts.bound;
+    const double start_total             = amounts.dissolved + amounts.bound;
     Run          run{0., 0., o2.cell_states()[0], {}, o2.n_dofs()};
     for (unsigned int step = 0; step < n_steps; ++step)
       {
@@ -149,7 +149,8 @@ namespace
         const double wall   = o2.wall_oxygen();
         if (wall != 0.)
           run.worst_balance =
-            std::max(run.worst_balance, std::abs(change - wall) / std::abs(wall));
+            std::max(run.worst_balance,
+                     std::abs(change - wall) / std::abs(wall));
       }
     run.end    = o2.cell_states()[0];
     run.uptake = run.end.oxygen - run.start.oxygen;
@@ -192,10 +193,10 @@ main(int argc, char *argv[])
     {
       const auto [exact, run] = uptake(0.5, 0.2, 10, *meshes);
       errors.push_back(std::abs(run.uptake - exact) / exact);
-      std::cout << "k = 0.5 /s, t = 0.2 s: " << run.n_dofs
-                << " DoFs, uptake " << run.uptake << ", exact " << exact
-                << ", relative error " << errors.back()
-                << ", worst O2 balance " << run.worst_balance << '\n';
+      std::cout << "k = 0.5 /s, t = 0.2 s: " << run.n_dofs << " DoFs, uptake "
+                << run.uptake << ", exact " << exact << ", relative error "
+                << errors.back() << ", worst O2 balance " << run.worst_balance
+                << '\n';
       check.at_most("O2 balance, " + std::to_string(run.n_dofs) + " DoFs",
                     run.worst_balance,
                     1e-6);
@@ -217,14 +218,11 @@ main(int argc, char *argv[])
   check.at_least("observed order in time", time_order, 1.8);
 
   // Equilibrium: Hill binding at P_A = P_v leaves everything as it was.
-  const Run still = transient(coarse,
-                              oxygen_parameters(40., 40.),
-                              OxygenParameters().binding(),
-                              0.01,
-                              3);
-  std::cout << "equilibrium at 40 Torr: S " << still.start.saturation
-            << " → " << still.end.saturation << ", P " << still.start.pressure
-            << " → " << still.end.pressure << '\n';
+  const Run still = transient(
+    coarse, oxygen_parameters(40., 40.), OxygenParameters().binding(), 0.01, 3);
+  std::cout << "equilibrium at 40 Torr: S " << still.start.saturation << " → "
+            << still.end.saturation << ", P " << still.start.pressure << " → "
+            << still.end.pressure << '\n';
   check.near("equilibrium: S unchanged",
              still.end.saturation,
              still.start.saturation,

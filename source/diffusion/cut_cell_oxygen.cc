@@ -216,6 +216,12 @@ namespace rbc_ifem
     });
     capacity.compress(VectorOperation::add);
     find_binding_pairs();
+    // The DoFs held at P_A, whose rows give the inflow at every step.
+    std::vector<bool> pressure_only(1 + 2 * n_colours, false);
+    pressure_only[0] = true;
+    held_dofs        = DoFTools::extract_boundary_dofs(dof_handler,
+                                                ComponentMask(pressure_only),
+                                                {pressure_boundary});
   }
 
   void
@@ -472,13 +478,8 @@ namespace rbc_ifem
   {
     // The rows held at P_A, unconstrained: Σ (K u) over their DoFs is what
     // flows in there (their capacity times ∂P/∂t is zero).
-    std::vector<bool> pressure_only(1 + 2 * n_colours, false);
-    pressure_only[0] = true;
-    const IndexSet held =
-      DoFTools::extract_boundary_dofs(dof_handler,
-                                      ComponentMask(pressure_only),
-                                      {pressure_boundary});
-    const FiniteElement<3>              &fe = dof_handler.get_fe(0);
+    const IndexSet                      &held = held_dofs;
+    const FiniteElement<3>              &fe   = dof_handler.get_fe(0);
     FEValues<3>                          values(geometry.mapping(),
                        fe,
                        QGauss<3>(parameters.degree + 1),

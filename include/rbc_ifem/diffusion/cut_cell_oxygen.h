@@ -217,6 +217,8 @@ namespace rbc_ifem
 
     /// c_i: the lumped capacity of each owned DoF [µm³ O2 / Torr or / 1].
     TrilinosWrappers::MPI::Vector capacity;
+    /// The DoFs held at P_A on the alveolar surface (this rank's cells).
+    IndexSet held_dofs;
     /// A node inside a red cell: its P₁ and S DoFs (S's owned here) and
     /// the red cell (membrane index).
     struct BindingNode

@@ -15,7 +15,10 @@ namespace rbc_ifem
       nodes.push_back(
         {p, s, matrix.el(p, s), matrix.el(s, p), matrix.el(s, s)});
     // A without the binding's coupling, Ŝ's shift on P₁'s diagonal.
-    decoupled.copy_from(matrix);
+    // (A fresh matrix of the same graph: copy_from() copies Epetra's
+    // buffers of entries for other ranks, and compress() then hung or threw
+    // on two ranks.)
+    decoupled.reinit(matrix.trilinos_matrix(), true);
     for (const Node &node : nodes)
       {
         decoupled.set(node.pressure, node.saturation, 0.);

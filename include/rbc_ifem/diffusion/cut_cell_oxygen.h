@@ -7,6 +7,7 @@
 
 #include <deal.II/numerics/data_postprocessor.h>
 
+#include <array>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -187,26 +188,38 @@ namespace rbc_ifem
     /// [µm³ O2/s]: the residual of the rows held at P_A.
     double
     alveolar_inflow() const;
+    /// step_matrix = the operator + @p sigma_over_dt c, without the binding.
+    void
+    set_up_step_matrix(const double sigma_over_dt);
     /**
      * Newton's method for the fields of the step whose capacity term is
      * @p sigma_over_dt c u − @p history, from the fields extrapolated
      * (or, @p first, the fields): each iteration one GMRES solve with
-     * BindingPreconditioner, set up once per step. Leaves the fields in
-     * solution.
+     * BindingPreconditioner, set up once per step, until the residual is
+     * within newton_tolerance times GMRES's tolerance. Leaves the fields
+     * in solution.
      */
     void
     solve_step(const double                         sigma_over_dt,
                const TrilinosWrappers::MPI::Vector &history,
                const bool                           first);
+    /// One GMRES solve of step_matrix @p u = @p b from @p u (its
+    /// constrained DoFs zero), distributed; returns the iterations.
+    unsigned int
+    solve_linear(const TrilinosWrappers::MPI::Vector &b,
+                 TrilinosWrappers::MPI::Vector       &u);
+    /// |D v|, D = diag(step_matrix)^-1/2: the norm of solve_scaled().
+    double
+    scaled_norm(const TrilinosWrappers::MPI::Vector &v) const;
     /**
      * The binding w q at each node (w = C times the node's volume),
      * linearised at @p u, q ≈ q₀ + q_P P + q_S S: − w q₀ into P₁'s row of
-     * @p rhs and + w q₀ into S's, its Jacobian into @p jacobian.
+     * @p b and + w q₀ into S's, its Jacobian into step_matrix (in place
+     * of the last one).
      */
     void
-    add_binding(const TrilinosWrappers::MPI::Vector &u,
-                TrilinosWrappers::MPI::Vector       &rhs,
-                TrilinosWrappers::SparseMatrix      &jacobian) const;
+    set_binding(const TrilinosWrappers::MPI::Vector &u,
+                TrilinosWrappers::MPI::Vector       &b);
     /// The (P₁, S) DoFs of the binding_nodes.
     std::vector<std::pair<types::global_dof_index, types::global_dof_index>>
     binding_pairs() const;
@@ -225,13 +238,22 @@ namespace rbc_ifem
     {
       types::global_dof_index pressure, saturation;
       unsigned int            cell;
+      /// The binding's share of step_matrix's (P₁,P₁), (P₁,S), (S,P₁),
+      /// (S,S).
+      std::array<double, 4> binding;
     };
     std::vector<BindingNode> binding_nodes;
     /// The fields at the last two steps, owned (solution has the last
     /// with ghosts).
-    TrilinosWrappers::MPI::Vector  fields, older_fields;
+    TrilinosWrappers::MPI::Vector fields, older_fields;
+    /// The operator with the capacities of the step and the binding.
     TrilinosWrappers::SparseMatrix step_matrix;
-    BindingPreconditioner          preconditioner;
+    /// The σ/Δt step_matrix holds (zero: none yet).
+    double                step_sigma_over_dt = 0.;
+    BindingPreconditioner preconditioner;
+    /// Newton stops when the residual is this times GMRES's tolerance.
+    static constexpr double       newton_tolerance      = 10.;
+    static constexpr unsigned int max_newton_iterations = 20;
 
     double       current_time = 0., last_step = 0.;
     unsigned int n_steps = 0;

@@ -17,8 +17,8 @@
 # build/rbc-ifem, RANKS to 2. STEPS (environment) defaults to 10.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
+root=$(cd "$(dirname "$0")/.." && pwd)
 benchmark_setup "${1:-}" "${2:-2}"
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 steps=${STEPS:-10}
 
 # run DIR PRM SETTINGS...: the transit experiment into DIR, its log DIR.log.

@@ -15,9 +15,7 @@ namespace rbc_ifem
       nodes.push_back(
         {p, s, matrix.el(p, s), matrix.el(s, p), matrix.el(s, s)});
     // A without the binding's coupling, Ŝ's shift on P₁'s diagonal.
-    // (A fresh matrix of the same graph: copy_from() copies Epetra's
-    // buffers of entries for other ranks, and compress() then hung or threw
-    // on two ranks.)
+    // (matrix's graph and values; only owned rows change here.)
     decoupled.reinit(matrix.trilinos_matrix(), true);
     for (const Node &node : nodes)
       {

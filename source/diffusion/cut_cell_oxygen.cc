@@ -361,9 +361,8 @@ namespace rbc_ifem
   CutCellOxygen::set_up_step_matrix(const double sigma_over_dt)
   {
     TimerOutput::Scope scope(timer, "oxygen: step matrix");
-    // Its owned rows only: a copy_from() would bring the ghost rows' buffer
-    // of matrix (on the ranks that have one), and with it a compress() that
-    // takes another path on those ranks than on the others (it hung).
+    // matrix's graph and values, without its buffer for other ranks' rows:
+    // nothing is added to those here.
     step_matrix.reinit(matrix.trilinos_matrix(), true);
     for (const auto i : owned_dofs)
       if (capacity[i] > 0.)

@@ -14,7 +14,8 @@
 #    at 0.1 s and its difference from the finest step's.
 # The rows are added to doc/results/benchmarks/transit_speed.csv and
 # transit_time_step.csv (benchmarks/common.sh). RBC_IFEM defaults to
-# build/rbc-ifem, RANKS to 2. STEPS (environment) defaults to 10.
+# build/rbc-ifem, RANKS to 2. STEPS (environment) defaults to 10;
+# TABLES=speed runs only the first table.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -48,6 +49,7 @@ results_row "$ranks" 7 "$dofs" "$steps" "$per_step" "$(mean_of speed.log Newton)
   "$(mean_of speed.log GMRES)" "$(share "oxygen: GMRES")" "$(share "oxygen: preconditioner")" \
   "$(awk -v s="$per_step" 'BEGIN { printf "%.0f", s * 375 / 60 }')" 15 "$(peak_memory speed.log)"
 
+[ "${TABLES:-all}" = speed ] && exit 0
 echo
 # The mean S at 0.1 s of one cell with a step of $1 ms.
 saturation_at() {

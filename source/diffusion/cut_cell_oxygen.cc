@@ -406,8 +406,10 @@ namespace rbc_ifem
         // Converged when the residual at u, F(u) = b − A(u) u with the
         // binding linearised at u, is within Newton's tolerance. (A test
         // on the change fails: a node of a sliver of a cut cell, with a
-        // diagonal 1e9 times below the others', drifts by 1e-5 per
-        // iteration while the residual stays put.)
+        // diagonal 1e9 times below the others', drifted by 5e-5 of P_A per
+        // iteration while the residual stayed put. GMRES, preconditioned
+        // from the left, meets its tolerance on the preconditioned
+        // residual; the factor 10 leaves room for the difference.)
         TrilinosWrappers::MPI::Vector x(u), residual(b);
         // The constrained rows say x = 0 (distribute() sets their values).
         constraints.set_zero(x);

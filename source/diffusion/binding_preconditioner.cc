@@ -39,17 +39,11 @@ namespace rbc_ifem
       reduced[node.pressure] -= node.b / node.d * src[node.saturation];
     reduced.compress(VectorOperation::add);
     amg.vmult(dst, reduced);
-    // y_S from r_S − E y_P, the P rows at zero.
-    TrilinosWrappers::MPI::Vector saturation(src);
-    saturation = 0.;
+    // The V-cycle acts on P and S apart (the decoupled matrix has no entry
+    // between them), so dst's S part is A_SS⁻¹ r_S; y_S = A_SS⁻¹ (r_S −
+    // E y_P) takes the correction with D for A_SS, as Ŝ does.
     for (const Node &node : nodes)
-      saturation[node.saturation] =
-        src[node.saturation] - node.e * dst[node.pressure];
-    saturation.compress(VectorOperation::insert);
-    TrilinosWrappers::MPI::Vector corrected(src);
-    amg.vmult(corrected, saturation);
-    for (const Node &node : nodes)
-      dst[node.saturation] = corrected[node.saturation];
-    dst.compress(VectorOperation::insert);
+      dst[node.saturation] -= node.e / node.d * dst[node.pressure];
+    dst.compress(VectorOperation::add);
   }
 } // namespace rbc_ifem

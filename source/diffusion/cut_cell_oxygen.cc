@@ -1,4 +1,5 @@
 #include <rbc_ifem/base/solver_failure.h>
+#include <rbc_ifem/diffusion/bdf2.h>
 #include <rbc_ifem/diffusion/cut_cell_oxygen.h>
 #include <rbc_ifem/diffusion/scaled_amg_solve.h>
 #include <rbc_ifem/diffusion/side_field.h>
@@ -314,11 +315,30 @@ namespace rbc_ifem
         }
     u.compress(VectorOperation::insert);
     constraints.distribute(u);
-    fields = older_fields = u;
-    solution              = u;
-    current_time          = 0.;
-    n_steps               = 0;
+    fields = older_fields = oldest_fields = u;
+    solution                              = u;
+    current_time                          = 0.;
+    n_steps                               = 0;
     wall = old_wall = 0.;
+    set_free_dofs();
+  }
+
+  void
+  CutCellOxygen::set_free_dofs()
+  {
+    free_dofs.reinit(capacity);
+    error_weights.reinit(capacity);
+    for (const auto i : owned_dofs)
+      if (!constraints.is_constrained(i))
+        {
+          free_dofs[i]     = 1.;
+          error_weights[i] = 1. / oxygen.alveolar_pressure;
+        }
+    for (const BindingNode &node : binding_nodes)
+      error_weights[node.saturation] = 1.;
+    free_dofs.compress(VectorOperation::insert);
+    error_weights.compress(VectorOperation::insert);
+    step_sigma_over_dt = 0.; // conserve() needs free_row_sum anew
   }
 
   void
@@ -330,31 +350,59 @@ namespace rbc_ifem
   void
   CutCellOxygen::advance(const double time_step)
   {
+    try_step(time_step);
+    accept_step();
+  }
+
+  double
+  CutCellOxygen::try_step(const double time_step)
+  {
     TimerOutput::Scope scope(timer, "oxygen: time step");
-    // BDF2, (3/2 uⁿ⁺¹ − 2 uⁿ + ½ uⁿ⁻¹)/Δt; BDF1 for the first step and
-    // after a change of the step.
-    const bool   first = n_steps == 0 || time_step != last_step;
-    const double sigma = first ? 1. : 1.5;
-    TrilinosWrappers::MPI::Vector history(fields);
-    if (!first)
-      history.sadd(2., -0.5, older_fields);
+    // BDF2 with the last step's length (BDF1 for the first step).
+    const Bdf2                    bdf(time_step, n_steps == 0 ? 0. : last_step);
+    TrilinosWrappers::MPI::Vector history(fields), start(fields);
+    history.sadd(bdf.now, -bdf.before, older_fields);
     history.scale(capacity);
     history /= time_step;
-    solve_step(sigma / time_step, history, first);
+    start.sadd(1. + bdf.growth, -bdf.growth, older_fields);
+    solve_step(bdf.sigma / time_step, history, start);
 
     // The wall's O2 by the same rule, so that it and the amounts change
     // alike: (σ Wⁿ⁺¹ − the history of W)/Δt = the inflow.
-    const double inflow = alveolar_inflow();
-    const double new_wall =
-      first ? wall + time_step * inflow :
-              (time_step * inflow + 2. * wall - 0.5 * old_wall) / sigma;
-    old_wall     = wall;
-    wall         = new_wall;
-    older_fields = fields;
-    fields       = solution;
-    current_time += time_step;
-    last_step = time_step;
+    next_wall =
+      (time_step * alveolar_inflow() + bdf.now * wall - bdf.before * old_wall) /
+      bdf.sigma;
+    next_step = time_step;
+    return n_steps >= 2 && bdf.growth > 0. ? local_error(time_step) : 0.;
+  }
+
+  void
+  CutCellOxygen::accept_step()
+  {
+    old_wall      = wall;
+    wall          = next_wall;
+    oldest_fields = older_fields;
+    older_fields  = fields;
+    fields        = solution;
+    current_time += next_step;
+    older_step = last_step;
+    last_step  = next_step;
     ++n_steps;
+  }
+
+  double
+  CutCellOxygen::local_error(const double time_step) const
+  {
+    // Bdf2Error's estimate at every free DoF, P relative to P_A and S as
+    // it is; their root mean square.
+    const Bdf2Error               estimate(time_step, last_step, older_step);
+    TrilinosWrappers::MPI::Vector error(fields);
+    error = solution;
+    error.add(-estimate.current, fields, -estimate.last, older_fields);
+    error.add(-estimate.before_last, oldest_fields);
+    error.scale(error_weights);
+    return estimate.factor * error.l2_norm() /
+           std::sqrt(std::max(free_dofs.l1_norm(), 1.));
   }
 
   void
@@ -371,6 +419,26 @@ namespace rbc_ifem
     for (BindingNode &node : binding_nodes)
       node.binding = {};
     step_sigma_over_dt = sigma_over_dt;
+
+    // 1ᵀ A 1 over the free rows and columns. The binding adds nothing to
+    // it (what leaves P₁'s row enters S's), so it holds for every Newton
+    // iteration of every step with this σ/Δt.
+    TrilinosWrappers::MPI::Vector row_sums(free_dofs);
+    step_matrix.vmult(row_sums, free_dofs);
+    free_row_sum = row_sums * free_dofs;
+  }
+
+  void
+  CutCellOxygen::conserve(const TrilinosWrappers::MPI::Vector &residual,
+                          TrilinosWrappers::MPI::Vector       &u) const
+  {
+    // The O2 balance of the step misses by Σ residual (each row is the
+    // O2 balance of its node; the binding's rows sum to zero). Shifting
+    // the free DoFs by β = Σ residual / 1ᵀ A 1 makes that sum zero: it is
+    // linear in u, the binding drops out of it.
+    const double beta = (residual * free_dofs) / free_row_sum;
+    u.add(beta, free_dofs);
+    constraints.distribute(u);
   }
 
   double
@@ -386,15 +454,14 @@ namespace rbc_ifem
   void
   CutCellOxygen::solve_step(const double                         sigma_over_dt,
                             const TrilinosWrappers::MPI::Vector &history,
-                            const bool                           first)
+                            const TrilinosWrappers::MPI::Vector &start)
   {
     if (sigma_over_dt != step_sigma_over_dt)
       set_up_step_matrix(sigma_over_dt);
-    TrilinosWrappers::MPI::Vector u(fields);
-    if (!first)
-      u.sadd(2., -1., older_fields); // the extrapolated start
+    TrilinosWrappers::MPI::Vector u(start);
     newton_iterations = 0;
     linear_iterations = 0;
+    double first_norm = 0.;
     for (;;)
       {
         TrilinosWrappers::MPI::Vector b(rhs);
@@ -404,12 +471,17 @@ namespace rbc_ifem
           set_binding(u, b);
         }
         // Converged when the residual at u, F(u) = b − A(u) u with the
-        // binding linearised at u, is within Newton's tolerance. (A test
-        // on the change fails: a node of a sliver of a cut cell, with a
-        // diagonal 1e9 times below the others', drifted by 5e-5 of P_A per
-        // iteration while the residual stayed put. GMRES, preconditioned
-        // from the left, meets its tolerance on the preconditioned
-        // residual; the factor 10 leaves room for the difference.)
+        // binding linearised at u, is within Newton's tolerance of the
+        // step's first, at the start. (Not of b: b holds c uⁿ/Δt, which
+        // dwarfs what moves in a step, so that the start passed near
+        // equilibrium, and accepted extrapolations drifted by 0.1 Torr in
+        // a few steps. Not on the change of u: a node of a sliver of a cut
+        // cell, with a diagonal 1e9 times below the others', drifted by
+        // 5e-5 of P_A per iteration while the residual stayed put.) Each
+        // GMRES solve then takes the residual down by its tolerance
+        // (an inexact Newton method); the factor 10 leaves room for
+        // GMRES's preconditioned residual, which it meets, and for the
+        // linearisation.
         TrilinosWrappers::MPI::Vector x(u), residual(b);
         // The constrained rows say x = 0 (distribute() sets their values).
         constraints.set_zero(x);
@@ -419,8 +491,13 @@ namespace rbc_ifem
         if (!std::isfinite(norm))
           throw SolverFailure("O2 transport: the fields are not finite.");
         const double bnorm = scaled_norm(b);
-        if (norm <= newton_tolerance * parameters.linear_tolerance * bnorm)
-          break;
+        if (newton_iterations == 0)
+          first_norm = std::max(norm, floor * bnorm);
+        if (norm <= newton_tolerance * parameters.linear_tolerance * first_norm)
+          {
+            conserve(residual, u);
+            break;
+          }
         if (newton_iterations == max_newton_iterations)
           throw SolverFailure(
             "O2 transport: Newton's method did not converge in " +
@@ -433,7 +510,11 @@ namespace rbc_ifem
                                       binding_pairs(),
                                       parameters.degree);
           }
-        linear_iterations += solve_linear(b, x);
+        linear_iterations +=
+          solve_linear(b,
+                       x,
+                       parameters.linear_tolerance *
+                         std::max(norm, floor * bnorm) / bnorm);
         u = x;
         ++newton_iterations;
       }
@@ -442,11 +523,11 @@ namespace rbc_ifem
 
   unsigned int
   CutCellOxygen::solve_linear(const TrilinosWrappers::MPI::Vector &b,
-                              TrilinosWrappers::MPI::Vector       &u)
+                              TrilinosWrappers::MPI::Vector       &u,
+                              const double                         tolerance)
   {
     TimerOutput::Scope scope(timer, "oxygen: GMRES");
-    SolverControl      control(parameters.max_linear_iterations,
-                          parameters.linear_tolerance);
+    SolverControl      control(parameters.max_linear_iterations, tolerance);
     try
       {
         SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(

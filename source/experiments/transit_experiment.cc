@@ -3,7 +3,9 @@
 #include <rbc_ifem/base/output.h>
 #include <rbc_ifem/base/output_error.h>
 #include <rbc_ifem/base/parameter_tools.h>
+#include <rbc_ifem/diffusion/bdf2.h>
 #include <rbc_ifem/diffusion/cut_cell_oxygen.h>
+#include <rbc_ifem/diffusion/step_control.h>
 #include <rbc_ifem/diffusion/uptake.h>
 #include <rbc_ifem/diffusion/uptake_mesh.h>
 #include <rbc_ifem/experiments/registry.h>
@@ -43,8 +45,19 @@ namespace rbc_ifem
                   time_step,
                   "Experiment 'transit': the step of the O2 transport [s] "
                   "(BDF2, the binding implicit); made a little shorter if "
-                  "it does not divide the Duration.",
+                  "it does not divide the Duration. With a Time step "
+                  "tolerance, the first step.",
                   GreaterThan());
+    add_parameter(prm,
+                  "Time step tolerance",
+                  time_step_tolerance,
+                  "Experiment 'transit': 0, every step is the Time step; "
+                  "otherwise each step's length is chosen so that its "
+                  "estimated local error, the root mean square over the "
+                  "DoFs of P's relative to the Alveolar PO2 and of S's, is "
+                  "at most this (a step above it is done again shorter), "
+                  "and no step is longer than the Output interval.",
+                  Patterns::Double(0.));
     add_parameter(prm,
                   "Output interval",
                   output_interval,
@@ -88,18 +101,26 @@ namespace rbc_ifem
         : start(start)
         , target(target)
         , times(start.size())
+        , last(start)
       {}
 
-      /// The cells' saturations @p saturations at @p time.
+      /// The cells' saturations @p saturations at @p time; a crossing
+      /// between the last time and this one by linear interpolation.
       void
       add(const double time, const std::vector<double> &saturations)
       {
         // A cell already at the target (P_v = P_A) has no rise to time.
         for (unsigned int c = 0; c < start.size(); ++c)
-          if (!times[c] && std::abs(target - start[c]) > 1e-12 &&
-              std::abs(saturations[c] - start[c]) >=
-                0.95 * std::abs(target - start[c]))
-            times[c] = time;
+          {
+            const double rise  = std::abs(saturations[c] - start[c]),
+                         was   = std::abs(last[c] - start[c]),
+                         wants = 0.95 * std::abs(target - start[c]);
+            if (!times[c] && wants > 1e-12 && rise >= wants)
+              times[c] =
+                last_time + (time - last_time) * (wants - was) / (rise - was);
+          }
+        last      = saturations;
+        last_time = time;
       }
 
       /// The time of cell @p c, empty if it has not risen so far.
@@ -113,6 +134,8 @@ namespace rbc_ifem
       const std::vector<double>          start;
       const double                       target;
       std::vector<std::optional<double>> times;
+      std::vector<double>                last;
+      double                             last_time = 0.;
     };
   } // namespace
 
@@ -158,17 +181,22 @@ namespace rbc_ifem
     o2.assemble();
     o2.start(transit.oxygen.venous_pressure);
 
-    // Whole steps: the step shortened to divide the duration.
+    // Whole steps: the step shortened to divide the duration, the outputs
+    // every whole number of them (with a tolerance, the steps then vary
+    // between the outputs).
     const unsigned int n_steps = static_cast<unsigned int>(
       std::ceil(transit.duration / transit.time_step - 1e-9));
-    const double       time_step = transit.duration / n_steps;
-    const unsigned int every =
-      std::max(1u,
-               static_cast<unsigned int>(
-                 std::round(transit.output_interval / time_step)));
+    const double time_step = transit.duration / n_steps;
+    const double output_period =
+      time_step * std::max(1., std::round(transit.output_interval / time_step));
+    StepControl steps(time_step, transit.time_step_tolerance, output_period);
     pcout << "Transit: " << cells->membranes.size() << " cells, " << o2.n_dofs()
-          << " DoFs, " << n_steps << " steps of " << time_step << " s, P_A "
-          << transit.oxygen.alveolar_pressure << " Torr, P_v "
+          << " DoFs, steps of " << time_step << " s"
+          << (transit.time_step_tolerance > 0. ?
+                " at first, then to a local error of " +
+                  exact_text(transit.time_step_tolerance) :
+                std::string())
+          << ", P_A " << transit.oxygen.alveolar_pressure << " Torr, P_v "
           << transit.oxygen.venous_pressure << " Torr" << std::endl;
 
     CsvTable o2_table("time,cell,saturation,mean_po2,uptake_rate");
@@ -194,26 +222,33 @@ namespace rbc_ifem
       cells->membranes.table().write(directory + "/cells.csv");
     });
     Timer        clock;
-    unsigned int n_outputs = 0;
-    for (unsigned int step = 1; step <= n_steps; ++step)
+    unsigned int n_outputs = 0, n_accepted = 0;
+    double       last_step = 0.;
+    for (double stop = output_period;
+         o2.time() < transit.duration - 1e-9 * time_step;)
       {
-        o2.advance(time_step);
+        stop              = std::min(stop, transit.duration);
+        const double step = steps.next(o2.time(), stop);
+        if (!steps.judge(o2.try_step(step)))
+          continue;
+        o2.accept_step();
+        ++n_accepted;
         states = o2.cell_states();
+        const Bdf2          bdf(step, last_step);
         std::vector<double> rates, saturations;
         for (unsigned int c = 0; c < states.size(); ++c)
           {
             const double now = states[c].oxygen;
-            rates.push_back(step == 1 ?
-                              (now - oxygen[c]) / time_step :
-                              (1.5 * now - 2. * oxygen[c] + 0.5 * older[c]) /
-                                time_step);
+            rates.push_back(bdf.derivative(now, oxygen[c], older[c], step));
             older[c]  = oxygen[c];
             oxygen[c] = now;
             saturations.push_back(states[c].saturation);
           }
+        last_step = step;
         rise.add(o2.time(), saturations);
-        if (step % every != 0 && step != n_steps)
+        if (o2.time() < stop - 1e-9 * step)
           continue;
+        stop += output_period;
 
         const CutCellOxygen::Amounts amounts = o2.amounts();
         const double change = amounts.dissolved + amounts.bound - start_total;
@@ -241,10 +276,17 @@ namespace rbc_ifem
         pcout << "  t = " << std::setprecision(4) << o2.time() << " s: mean S "
               << std::setprecision(5) << mean_saturation / volume
               << ", O2 balance " << std::setprecision(2) << error << ", Newton "
-              << newton << ", GMRES " << gmres << " "
-              << time_left_text(clock.wall_time(), step, n_steps - step)
+              << newton << ", GMRES " << gmres << ", step "
+              << std::setprecision(3) << step << " s "
+              << time_left_text(clock.wall_time(),
+                                n_accepted,
+                                static_cast<unsigned int>(std::ceil(
+                                  (transit.duration - o2.time()) / step)))
               << std::endl;
       }
+
+    pcout << "Transit: " << n_accepted << " steps, " << steps.n_rejected()
+          << " tried again shorter" << std::endl;
 
     CsvTable summary(
       "cell,start_saturation,end_saturation,end_mean_po2,time_to_95");

@@ -32,7 +32,8 @@ namespace rbc_ifem
    * binding's share), is exact but for D standing in for A_SS; Ŝ and A_SS
    * are the two blocks of one symmetric positive definite matrix, A
    * without B and E and with the shift, and one AMG V-cycle of it applies
-   * either. Two V-cycles per application.
+   * both at once: its S part is A_SS⁻¹ r_S, to which −D⁻¹ E y_P is added
+   * (D again for A_SS). One V-cycle per application.
    */
   class BindingPreconditioner
   {

@@ -99,12 +99,27 @@ namespace rbc_ifem
     solve() override;
 
     /**
-     * One step of @p time_step [s]: BDF2 (BDF1 the first step after
-     * start() or a change of the step). Throws SolverFailure if Newton's
-     * method or GMRES does not converge or the fields are not finite.
+     * One step of @p time_step [s]: BDF2 for a step of this length after
+     * the last one's (Bdf2; BDF1 the first step after start()). Throws
+     * SolverFailure if Newton's method or GMRES does not converge or the fields
+     * are not finite.
      */
     void
     advance(const double time_step);
+
+    /**
+     * Solve the step of @p time_step [s] as advance() does, but keep it
+     * aside until accept_step() (a step not accepted is tried again
+     * shorter). Returns an estimate of the step's local error (Bdf2Error),
+     * the root mean square over the free DoFs of P's relative to P_A and
+     * S's; zero for the first two steps, which have no estimate.
+     */
+    double
+    try_step(const double time_step);
+
+    /// Make the step last tried the fields.
+    void
+    accept_step();
 
     /// The time of the fields [s].
     double
@@ -193,21 +208,37 @@ namespace rbc_ifem
     set_up_step_matrix(const double sigma_over_dt);
     /**
      * Newton's method for the fields of the step whose capacity term is
-     * @p sigma_over_dt c u − @p history, from the fields extrapolated
-     * (or, @p first, the fields): each iteration one GMRES solve with
-     * BindingPreconditioner, set up once per step, until the residual is
-     * within newton_tolerance times GMRES's tolerance. Leaves the fields
-     * in solution.
+     * @p sigma_over_dt c u − @p history, from @p start: each iteration
+     * one GMRES solve with BindingPreconditioner, set up once per step,
+     * that takes the residual down by GMRES's tolerance, until the
+     * residual is within newton_tolerance times GMRES's tolerance of the
+     * one at the start; then conserve(). Leaves the fields in solution.
      */
     void
     solve_step(const double                         sigma_over_dt,
                const TrilinosWrappers::MPI::Vector &history,
-               const bool                           first);
+               const TrilinosWrappers::MPI::Vector &start);
+    /**
+     * Shift the free DoFs of @p u alike so that the sum of the step's
+     * @p residual at @p u (the O2 the step's balance misses by) is zero,
+     * whatever GMRES's tolerance, and distribute.
+     */
+    void
+    conserve(const TrilinosWrappers::MPI::Vector &residual,
+             TrilinosWrappers::MPI::Vector       &u) const;
+    /// free_dofs and error_weights, for the constraints and P_A.
+    void
+    set_free_dofs();
+    /// try_step()'s estimate for the step @p time_step in solution.
+    double
+    local_error(const double time_step) const;
     /// One GMRES solve of step_matrix @p u = @p b from @p u (its
-    /// constrained DoFs zero), distributed; returns the iterations.
+    /// constrained DoFs zero) to @p tolerance relative to |D b|,
+    /// distributed; returns the iterations.
     unsigned int
     solve_linear(const TrilinosWrappers::MPI::Vector &b,
-                 TrilinosWrappers::MPI::Vector       &u);
+                 TrilinosWrappers::MPI::Vector       &u,
+                 const double                         tolerance);
     /// |D v|, D = diag(step_matrix)^-1/2: the norm of solve_scaled().
     double
     scaled_norm(const TrilinosWrappers::MPI::Vector &v) const;
@@ -243,22 +274,34 @@ namespace rbc_ifem
       std::array<double, 4> binding;
     };
     std::vector<BindingNode> binding_nodes;
-    /// The fields at the last two steps, owned (solution has the last
-    /// with ghosts).
-    TrilinosWrappers::MPI::Vector fields, older_fields;
+    /// The fields at the last three steps, owned (solution has the step
+    /// being tried, with ghosts).
+    TrilinosWrappers::MPI::Vector fields, older_fields, oldest_fields;
     /// The operator with the capacities of the step and the binding.
     TrilinosWrappers::SparseMatrix step_matrix;
     /// The σ/Δt step_matrix holds (zero: none yet).
-    double                step_sigma_over_dt = 0.;
-    BindingPreconditioner preconditioner;
-    /// Newton stops when the residual is this times GMRES's tolerance.
+    double step_sigma_over_dt = 0.;
+    /// 1 on the owned DoFs that are not constrained, and 1ᵀ step_matrix 1
+    /// over them (for conserve()).
+    TrilinosWrappers::MPI::Vector free_dofs;
+    double                        free_row_sum = 0.;
+    /// 1/P_A on the free DoFs of P, 1 on those of S, zero elsewhere.
+    TrilinosWrappers::MPI::Vector error_weights;
+    BindingPreconditioner         preconditioner;
+    /// Newton stops when the residual is this times GMRES's tolerance
+    /// times the step's first.
     static constexpr double       newton_tolerance      = 10.;
     static constexpr unsigned int max_newton_iterations = 20;
+    /// The step's first residual counts as at least this times |D b|, so
+    /// that Newton's tolerance stays above round-off near equilibrium.
+    static constexpr double floor = 1e-3;
 
-    double       current_time = 0., last_step = 0.;
+    /// The time, the last two steps, and the step being tried [s].
+    double current_time = 0., last_step = 0., older_step = 0., next_step = 0.;
     unsigned int n_steps = 0;
-    /// The wall's O2 (since start()) at the last two steps [µm³ O2].
-    double       wall = 0., old_wall = 0.;
+    /// The wall's O2 (since start()) at the last two steps and the step
+    /// being tried [µm³ O2].
+    double       wall = 0., old_wall = 0., next_wall = 0.;
     unsigned int newton_iterations = 0, linear_iterations = 0;
 
     /// The fields for the output (DataOut keeps references to them).

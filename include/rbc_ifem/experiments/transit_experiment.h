@@ -16,10 +16,11 @@ namespace rbc_ifem
   struct TransitParameters : public ExperimentParameters
   {
     OxygenParameters oxygen;
-    double           duration        = 0.75; ///< [s]
-    bool             cells_flow      = true;
-    double           time_step       = 0.002; ///< [s]
-    double           output_interval = 0.05;  ///< [s]
+    double           duration            = 0.75; ///< [s]
+    bool             cells_flow          = true;
+    double           time_step           = 0.002; ///< [s]
+    double           time_step_tolerance = 0.;    ///< 0: fixed steps
+    double           output_interval     = 0.05;  ///< [s]
 
     void
     add_parameters(ParameterHandler &prm) override;

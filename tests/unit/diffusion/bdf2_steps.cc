@@ -4,7 +4,7 @@
 // Milne's estimate, factor × (BDF2's solution − the extrapolation), equals
 // BDF2's local error exactly (both are h³ u‴ times constants); equal steps
 // give 3/2, 2, 1/2 and the factor 2/11. StepControl lands on its stops
-// without a step after them more than twice as long, keeps fixed steps
+// (from two steps before, in two halves), keeps fixed steps
 // that divide the way, grows the step by at most 2 after a small error and
 // rejects a step whose error is above the tolerance.
 
@@ -83,7 +83,7 @@ main()
 
   // Controlled: a small error doubles the step; one above the tolerance is
   // rejected and the step shortened; near a stop the last two steps split
-  // the way, none after it more than twice the one before.
+  // the way.
   StepControl controlled(0.01, 1e-3, 1.);
   check.near("controlled: first", controlled.next(0., 10.), 0.01, 0.);
   check.holds("controlled: small error accepted", controlled.judge(1e-6));

@@ -60,4 +60,14 @@ namespace rbc_ifem
   {
     return rejected;
   }
+
+  std::vector<double>
+  output_times(const double duration, const double period)
+  {
+    std::vector<double> times;
+    for (unsigned int k = 1; k * period < duration - 1e-9 * period; ++k)
+      times.push_back(k * period);
+    times.push_back(duration);
+    return times;
+  }
 } // namespace rbc_ifem

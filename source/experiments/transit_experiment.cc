@@ -3,6 +3,7 @@
 #include <rbc_ifem/base/output.h>
 #include <rbc_ifem/base/output_error.h>
 #include <rbc_ifem/base/parameter_tools.h>
+#include <rbc_ifem/base/solver_failure.h>
 #include <rbc_ifem/diffusion/bdf2.h>
 #include <rbc_ifem/diffusion/cut_cell_oxygen.h>
 #include <rbc_ifem/diffusion/step_control.h>
@@ -16,6 +17,7 @@
 
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <optional>
 #include <sstream>
 
@@ -56,7 +58,9 @@ namespace rbc_ifem
                   "estimated local error, the root mean square over the "
                   "DoFs of P's relative to the Alveolar PO2 and of S's, is "
                   "at most this (a step above it is done again shorter), "
-                  "and no step is longer than the Output interval.",
+                  "and no step is longer than the Output interval; a step "
+                  "whose Newton method or GMRES fails is done again at a "
+                  "fifth (three failures in a row stop the run).",
                   Patterns::Double(0.));
     add_parameter(prm,
                   "Output interval",
@@ -137,6 +141,39 @@ namespace rbc_ifem
       std::vector<double>                last;
       double                             last_time = 0.;
     };
+
+    /**
+     * @p o2's estimate of the local error of a step of @p step [s]
+     * (CutCellOxygen::try_step()). With steps to a tolerance (@p adaptive),
+     * a step whose Newton method or GMRES fails counts as too long: its
+     * error is infinite, and StepControl tries it again at a fifth, as a
+     * stiff start may need. The third failure in a row stops the run with
+     * its own message (shorter steps did not help), as the first does with
+     * fixed steps. @p failures counts the failures in a row.
+     */
+    double
+    try_step(CutCellOxygen            &o2,
+             const double              step,
+             const bool                adaptive,
+             unsigned int             &failures,
+             const ConditionalOStream &pcout)
+    {
+      try
+        {
+          const double error = o2.try_step(step);
+          failures           = 0;
+          return error;
+        }
+      catch (const SolverFailure &failure)
+        {
+          if (!adaptive || ++failures == 3)
+            throw;
+          pcout << "  t = " << std::setprecision(4) << o2.time()
+                << " s: a step of " << std::setprecision(3) << step
+                << " s failed (" << failure.what() << "); shorter" << std::endl;
+          return std::numeric_limits<double>::infinity();
+        }
+    }
   } // namespace
 
   TransitExperiment::TransitExperiment(const ExperimentContext &context,
@@ -203,7 +240,7 @@ namespace rbc_ifem
     CsvTable balance("time,dissolved,bound,wall_oxygen,balance_error");
     const CutCellOxygen::Amounts start_amounts = o2.amounts();
     const double start_total = start_amounts.dissolved + start_amounts.bound;
-    std::vector<CutCellOxygen::CellState> states = o2.cell_states(), old;
+    std::vector<CutCellOxygen::CellState> states = o2.cell_states();
     std::vector<double>                   start_saturation;
     for (const auto &state : states)
       start_saturation.push_back(state.saturation);
@@ -212,7 +249,8 @@ namespace rbc_ifem
                      transit.oxygen.alveolar_pressure));
     // The O2 per cell at the last two steps, for the uptake rates (BDF2's
     // derivative, as the scheme's own).
-    std::vector<double> oxygen(states.size()), older(states.size());
+    std::vector<double> oxygen(states.size()), older(states.size()),
+      rates(states.size());
     for (unsigned int c = 0; c < states.size(); ++c)
       oxygen[c] = older[c] = states[c].oxygen;
 
@@ -222,33 +260,49 @@ namespace rbc_ifem
       cells->membranes.table().write(directory + "/cells.csv");
     });
     Timer        clock;
-    unsigned int n_outputs = 0, n_accepted = 0;
-    double       last_step = 0.;
-    for (double stop = output_period;
-         o2.time() < transit.duration - 1e-9 * time_step;)
+    unsigned int n_outputs = 0, n_accepted = 0, failures = 0;
+    double       last_step = 0., step = 0., last_line = 0.;
+    // The end of a progress line: the step, and the time left at its pace;
+    // notes when the last line was printed.
+    const auto pace = [&]() {
+      std::ostringstream text;
+      text << "step " << std::setprecision(3) << step << " s "
+           << time_left_text(clock.wall_time(),
+                             n_accepted,
+                             static_cast<unsigned int>(std::ceil(
+                               (transit.duration - o2.time()) / step)));
+      last_line = clock.wall_time();
+      return text.str();
+    };
+    for (const double stop : output_times(transit.duration, output_period))
       {
-        stop              = std::min(stop, transit.duration);
-        const double step = steps.next(o2.time(), stop);
-        if (!steps.judge(o2.try_step(step)))
-          continue;
-        o2.accept_step();
-        ++n_accepted;
-        states = o2.cell_states();
-        const Bdf2          bdf(step, last_step);
-        std::vector<double> rates, saturations;
-        for (unsigned int c = 0; c < states.size(); ++c)
+        while (o2.time() < stop - 1e-9 * output_period)
           {
-            const double now = states[c].oxygen;
-            rates.push_back(bdf.derivative(now, oxygen[c], older[c], step));
-            older[c]  = oxygen[c];
-            oxygen[c] = now;
-            saturations.push_back(states[c].saturation);
+            step = steps.next(o2.time(), stop);
+            if (!steps.judge(try_step(
+                  o2, step, transit.time_step_tolerance > 0., failures, pcout)))
+              continue;
+            o2.accept_step();
+            ++n_accepted;
+            states = o2.cell_states();
+            const Bdf2          bdf(step, last_step);
+            std::vector<double> saturations;
+            for (unsigned int c = 0; c < states.size(); ++c)
+              {
+                const double now = states[c].oxygen;
+                rates[c]  = bdf.derivative(now, oxygen[c], older[c], step);
+                older[c]  = oxygen[c];
+                oxygen[c] = now;
+                saturations.push_back(states[c].saturation);
+              }
+            last_step = step;
+            rise.add(o2.time(), saturations);
+            // Between outputs far apart, a line at least every minute.
+            if (clock.wall_time() > last_line + 60. &&
+                o2.time() < stop - 1e-9 * output_period)
+              pcout << "  t = " << std::setprecision(4) << o2.time()
+                    << " s: " << pace() << std::endl;
           }
-        last_step = step;
-        rise.add(o2.time(), saturations);
-        if (o2.time() < stop - 1e-9 * step)
-          continue;
-        stop += output_period;
 
         const CutCellOxygen::Amounts amounts = o2.amounts();
         const double change = amounts.dissolved + amounts.bound - start_total;
@@ -276,13 +330,7 @@ namespace rbc_ifem
         pcout << "  t = " << std::setprecision(4) << o2.time() << " s: mean S "
               << std::setprecision(5) << mean_saturation / volume
               << ", O2 balance " << std::setprecision(2) << error << ", Newton "
-              << newton << ", GMRES " << gmres << ", step "
-              << std::setprecision(3) << step << " s "
-              << time_left_text(clock.wall_time(),
-                                n_accepted,
-                                static_cast<unsigned int>(std::ceil(
-                                  (transit.duration - o2.time()) / step)))
-              << std::endl;
+              << newton << ", GMRES " << gmres << ", " << pace() << std::endl;
       }
 
     pcout << "Transit: " << n_accepted << " steps, " << steps.n_rejected()

@@ -112,7 +112,9 @@ namespace rbc_ifem
      * aside until accept_step() (a step not accepted is tried again
      * shorter). Returns an estimate of the step's local error (Bdf2Error),
      * the root mean square over the free DoFs of P's relative to P_A and
-     * S's; zero for the first two steps, which have no estimate.
+     * S's; zero for the first two steps, which have no estimate. A step
+     * that throws (as advance()) leaves the fields as they were, so that
+     * it can be tried again shorter.
      */
     double
     try_step(const double time_step);
@@ -212,7 +214,8 @@ namespace rbc_ifem
      * one GMRES solve with BindingPreconditioner, set up once per step,
      * that takes the residual down by GMRES's tolerance, until the
      * residual is within newton_tolerance times GMRES's tolerance of the
-     * one at the start; then conserve(). Leaves the fields in solution.
+     * one at the start (at least one solve, whatever the start) or at
+     * round-off; then conserve(). Leaves the fields in solution.
      */
     void
     solve_step(const double                         sigma_over_dt,
@@ -288,13 +291,15 @@ namespace rbc_ifem
     /// 1/P_A on the free DoFs of P, 1 on those of S, zero elsewhere.
     TrilinosWrappers::MPI::Vector error_weights;
     BindingPreconditioner         preconditioner;
-    /// Newton stops when the residual is this times GMRES's tolerance
-    /// times the step's first.
+    /// Newton stops, after at least one solve, when the residual is this
+    /// times GMRES's tolerance times the step's first, or this times
+    /// round_off |D b| (a start already at round-off takes no GMRES
+    /// iteration).
     static constexpr double       newton_tolerance      = 10.;
     static constexpr unsigned int max_newton_iterations = 20;
-    /// The step's first residual counts as at least this times |D b|, so
-    /// that Newton's tolerance stays above round-off near equilibrium.
-    static constexpr double floor = 1e-3;
+    /// Residuals below this times |D b| are round-off: GMRES is asked for
+    /// no less (asked for 7e-18, it stalled at 3.6e-15).
+    static constexpr double round_off = 1e-12;
 
     /// The time, the last two steps, and the step being tried [s].
     double current_time = 0., last_step = 0., older_step = 0., next_step = 0.;

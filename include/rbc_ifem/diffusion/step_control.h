@@ -1,6 +1,8 @@
 #ifndef rbc_ifem_diffusion_step_control_h
 #define rbc_ifem_diffusion_step_control_h
 
+#include <vector>
+
 namespace rbc_ifem
 {
   /**
@@ -51,6 +53,16 @@ namespace rbc_ifem
     mutable bool   cut        = false;
     unsigned int   rejected   = 0;
   };
+
+  /**
+   * The times a run of @p duration [s] stops at to write its outputs,
+   * every @p period: the multiples of the period before the duration, and
+   * the duration. A multiple within 1e-9 periods of the duration is the
+   * duration itself, so that rounding in k × period leaves no sliver of a
+   * step, and no second row at the same time, before the end.
+   */
+  std::vector<double>
+  output_times(const double duration, const double period);
 } // namespace rbc_ifem
 
 #endif

@@ -6,7 +6,8 @@
 // give 3/2, 2, 1/2 and the factor 2/11. StepControl lands on its stops
 // (from two steps before, in two halves), keeps fixed steps
 // that divide the way, grows the step by at most 2 after a small error and
-// rejects a step whose error is above the tolerance.
+// rejects a step whose error is above the tolerance, and a failed one at a
+// fifth. output_times() ends on the duration without a sliver before it.
 
 #include <rbc_ifem/diffusion/bdf2.h>
 #include <rbc_ifem/diffusion/step_control.h>
@@ -14,6 +15,8 @@
 #include "check.h"
 
 #include <cmath>
+#include <limits>
+#include <vector>
 
 using namespace rbc_ifem;
 
@@ -98,5 +101,25 @@ main()
                second = near_stop.next(first, 0.7);
   check.near("near a stop: halves", first, 0.35, 1e-15);
   check.near("near a stop: lands", first + second, 0.7, 1e-15);
+
+  // A failed step (infinite error) is tried again at a fifth.
+  StepControl failing(0.01, 1e-3, 1.);
+  failing.next(0., 10.);
+  check.holds("failed: rejected",
+              !failing.judge(std::numeric_limits<double>::infinity()));
+  check.near("failed: a fifth", failing.next(0., 10.), 0.002, 1e-15);
+
+  // The outputs of 0.3 s every three steps of 0.3/45 s (Duration 0.3,
+  // Time step 0.0067, Output interval 0.02): 15, the last the duration
+  // itself, though 15 periods round below it (no sliver of a step before
+  // the end, no second row at 0.3).
+  const double period = 0.3 / 45 * 3;
+  check.holds("outputs: 15 periods below 0.3 in floating point",
+              15 * period < 0.3);
+  const std::vector<double> outputs = output_times(0.3, period);
+  check.near("outputs: how many", outputs.size(), 15, 0);
+  check.near("outputs: the last", outputs.back(), 0.3, 0.);
+  check.near("outputs: the one before", outputs[13], 14 * period, 0.);
+  check.near("outputs: 0.1 every 0.03", output_times(0.1, 0.03).size(), 4, 0);
   return check.exit_code();
 }
